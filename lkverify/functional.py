@@ -1,0 +1,87 @@
+"""Lyapunov–Krasovskii functionals and the integral terms they are built from.
+
+A functional is a sum of labelled scalar :class:`~lkverify.terms.Term` objects:
+point terms (``f(t)``, ``γ/2 ωᵀΘω``) and integral terms whose weights may
+depend on t and ξ (``∫_{t-τ}^t (λ(ξ+τ-t)+μ) w(x(ξ)) dξ``), products of the two
+(``Lᵀ D⁻¹ ∫ f^ν L dξ``) and double integrals with kernel tails
+(``∫_0^t ∫_{t-ξ}^∞ ‖G(ζ)‖ dζ w(x(ξ)) dξ``).
+
+>>> import sympy
+>>> from lkverify import Parameters, Vector, t, xi
+>>> P = Parameters(); tau = P.delay("tau")
+>>> x = Vector("x", 1)
+>>> window_integral(x(xi)[0] ** 2, tau)
+Integral(x_1(xi)**2, (xi, t - tau, t))
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import sympy
+
+from .symbols import t, xi, zeta
+from .terms import Term
+
+__all__ = ["Functional", "window_integral", "memory_integral", "tail_integral"]
+
+
+def _integrate(integrand, var, lower, upper):
+    if isinstance(integrand, sympy.MatrixBase):
+        return sympy.ImmutableMatrix(integrand.shape[0], integrand.shape[1],
+                                     lambda i, j: sympy.Integral(integrand[i, j], (var, lower, upper)))
+    return sympy.Integral(integrand, (var, lower, upper))
+
+
+def window_integral(integrand, tau, *, weight=1):
+    """``∫_{t-τ}^{t} weight · integrand dξ`` (componentwise for a vector integrand).
+
+    ``integrand`` and ``weight`` are written in ``xi`` (and possibly ``t``).
+    """
+    if isinstance(integrand, sympy.MatrixBase):
+        integrand = integrand * weight
+    else:
+        integrand = weight * integrand
+    return _integrate(integrand, xi, t - tau, t)
+
+
+def memory_integral(integrand, *, lower=0):
+    """``∫_{lower}^{t} integrand dξ``: infinite memory from the initial time (0 by default)."""
+    return _integrate(integrand, xi, lower, t)
+
+
+def tail_integral(kernel_of_zeta, lower):
+    """``∫_{lower}^{∞} kernel(ζ) dζ``, e.g. the tail ``∫_{t-ξ}^∞ ‖G(ζ)‖ dζ`` of paper 000's (14)."""
+    return _integrate(kernel_of_zeta, zeta, lower, sympy.oo)
+
+
+class Functional:
+    """A Lyapunov–Krasovskii functional V = Σ terms.
+
+    Parameters
+    ----------
+    terms : sequence of Term
+        Scalar terms, each labelled as the paper prints it.
+    name : str
+        The paper's label, e.g. "(9)".
+    """
+
+    def __init__(self, terms: Sequence[Term], *, name: str = ""):
+        terms = tuple(Term(t_.expr[0, 0], text=t_.text, latex=t_.latex)
+                      if isinstance(t_, Term) and t_.is_vector and t_.shape == (1, 1) else t_ for t_ in terms)
+        if not terms:
+            raise ValueError(f"Functional {name}: expected at least one term")
+        for term in terms:
+            if not isinstance(term, Term):
+                raise TypeError(f"Functional {name}: expected Term objects, got {type(term).__name__}")
+            if term.is_vector:
+                raise ValueError(f"Functional {name}: term {term.text!r} is a {term.shape} matrix, expected a scalar")
+        self.terms = terms
+        self.name = name
+
+    @property
+    def expr(self) -> sympy.Expr:
+        return sympy.Add(*[term.expr for term in self.terms])
+
+    def __repr__(self) -> str:
+        return f"Functional({self.name!r}, {len(self.terms)} terms)"
