@@ -1,0 +1,217 @@
+"""Numeric witnesses: random admissible histories and parameters, and exact-enough evaluation.
+
+A witness is a point of the constraint manifold in the space of histories: every
+state gets a smooth history on the whole real line that satisfies its
+constraints exactly (unit vectors and frames are rotations of fixed vectors,
+built from rational Cayley rotations and the Rodrigues formula), every free
+parameter a random admissible value, and the evaluation time ``t_eval``.
+Integrals are evaluated by adaptive quadrature (``scipy.integrate.quad``), nested
+integrals recursively.
+
+>>> import numpy as np, sympy
+>>> from lkverify import Parameters, UnitVector, t
+>>> s = UnitVector("s"); P = Parameters()
+>>> w = make_witness([s], P, rng=np.random.default_rng(0))
+>>> round(evaluate(sum(c**2 for c in s(t)), w), 12)
+1.0
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+import scipy.integrate
+import sympy
+from sympy.core.function import AppliedUndef
+
+from .parameters import Kind, Parameters, apply_substitution
+from .states import Frame, Vector
+from .symbols import t
+
+__all__ = ["Witness", "make_witness", "evaluate"]
+
+_theta = sympy.Symbol("theta", real=True)
+
+
+def _rat(rng, lo, hi, den=32):
+    return sympy.Rational(int(rng.integers(int(lo * den), int(hi * den) + 1)), den)
+
+
+def _cayley_rotation(rng) -> sympy.Matrix:
+    """A random rotation with rational entries: (I − S)(I + S)⁻¹, S skew-symmetric."""
+    a, b, c = (_rat(rng, -1, 1, 8) for _ in range(3))
+    S = sympy.Matrix([[0, -c, b], [c, 0, -a], [-b, a, 0]])
+    return (sympy.eye(3) - S) * (sympy.eye(3) + S).inv()
+
+
+def _rotation_about(rng) -> sympy.Matrix:
+    """R(θ): rotation by angle c·θ + φ0 about a fixed random unit axis (Rodrigues' formula)."""
+    n = _cayley_rotation(rng)[:, 0]  # a rational unit axis
+    K = sympy.Matrix([[0, -n[2], n[1]], [n[2], 0, -n[0]], [-n[1], n[0], 0]])
+    ang = _rat(rng, 0.3, 1.5) * _theta + _rat(rng, 0, 3)
+    return sympy.eye(3) + sympy.sin(ang) * K + (1 - sympy.cos(ang)) * K * K
+
+
+@dataclasses.dataclass(frozen=True)
+class Witness:
+    """A concrete admissible point: parameter values, state histories, evaluation time.
+
+    Attributes
+    ----------
+    parameter_values : dict
+        name → SymPy value (what the user fixed, else random admissible).
+    histories : dict
+        component function → ``Lambda(θ, expression)``.
+    t_eval : sympy.Rational
+    """
+
+    parameter_values: dict
+    substitution: dict
+    histories: dict
+    t_eval: sympy.Rational
+
+    def state_values(self, states: Sequence[Vector]) -> dict[str, list[float]]:
+        """The states' values at ``t_eval`` (for reports)."""
+        return {s.name: [float(self.histories[f](self.t_eval)) for f in s.functions] for s in states}
+
+    def describe(self, states: Sequence[Vector]) -> dict:
+        vals = {}
+        for k, v in self.parameter_values.items():
+            if isinstance(v, sympy.MatrixBase):
+                vals[k] = [[float(x) for x in row] for row in v.tolist()]
+            elif isinstance(v, sympy.Expr) and v.free_symbols:
+                vals[k] = str(v)
+            else:
+                vals[k] = float(v)
+        return {"t": float(self.t_eval), "parameters": vals,
+                "states_at_t": self.state_values(states),
+                "histories": "smooth random histories satisfying the constraints (rotations for unit vectors)"}
+
+
+def make_witness(states: Sequence[Vector], parameters: Parameters, *, fixed: Mapping[str, object] | None = None,
+                 rng: np.random.Generator) -> Witness:
+    """Draw a random admissible witness.
+
+    Parameters
+    ----------
+    states : sequence of Vector
+    parameters : Parameters
+    fixed : mapping, optional
+        Checked parameter values to keep (name → value); the rest are random.
+    rng : numpy Generator
+    """
+    fixed = dict(fixed or {})
+    values = dict(fixed)
+    # orthonormal groups of constant vectors share one rotation
+    for group in parameters._groups:
+        free = [n for n in group if n not in values]
+        if free:
+            R = _cayley_rotation(rng)
+            for i, n in enumerate(free):
+                values[n] = sympy.ImmutableMatrix(R[:, i])
+    for spec in parameters:
+        if spec.name in values:
+            continue
+        if spec.kind is Kind.UNIT_VECTOR:
+            values[spec.name] = sympy.ImmutableMatrix(_cayley_rotation(rng)[:, 0])
+        else:
+            values[spec.name] = spec.random_value(rng)
+    substitution = parameters.substitution(values)
+    histories: dict = {}
+    done_frames = []
+    for s in states:
+        if s.frame is not None:
+            if s.frame in done_frames:
+                continue
+            done_frames.append(s.frame)
+            M = _rotation_about(rng) * _cayley_rotation(rng)
+            for k, v in enumerate(s.frame.vectors):
+                for i, f in enumerate(v.functions):
+                    histories[f] = sympy.Lambda(_theta, M[i, k])
+        elif s.unit:
+            v0 = _cayley_rotation(rng)[:, 0]
+            col = _rotation_about(rng) * v0
+            for i, f in enumerate(s.functions):
+                histories[f] = sympy.Lambda(_theta, col[i])
+        else:
+            for f in s.functions:
+                expr = (_rat(rng, -1, 1) + _rat(rng, -1, 1) * sympy.sin(_rat(rng, 0.5, 2) * _theta + _rat(rng, 0, 3))
+                        + _rat(rng, -0.5, 0.5) * sympy.cos(_rat(rng, 0.5, 3) * _theta))
+                histories[f] = sympy.Lambda(_theta, expr)
+    t_eval = _rat(rng, 1.5, 2.5, 8)
+    return Witness(values, substitution, histories, t_eval)
+
+
+def _substitute_parameters(expr, w: Witness):
+    expr = apply_substitution(sympy.sympify(expr), w.substitution)
+    if expr.has(sympy.Derivative, sympy.Subs):
+        expr = expr.replace(lambda e: isinstance(e, (sympy.Derivative, sympy.Subs)), lambda e: e.doit())
+    return expr
+
+
+def evaluate(expr, w: Witness) -> float:
+    """The value of ``expr`` at the witness (quadrature for integrals)."""
+    return evaluate_many([expr], w)[0]
+
+
+def evaluate_many(exprs, w: Witness) -> list[float]:
+    """The values of several expressions at the witness, sharing compiled integrals."""
+    exprs = [_substitute_parameters(e, w) for e in exprs]
+    histories = {f: sympy.lambdify([lam.variables[0]], lam.expr, modules="math") for f, lam in w.histories.items()}
+    fn = _compile(exprs, (t,), histories)
+    return [float(v) for v in fn(float(w.t_eval))]
+
+
+def _outer(e, cls):
+    found = []
+
+    def walk(x):
+        if isinstance(x, cls):
+            found.append(x)
+            return
+        for a in x.args:
+            walk(a)
+
+    walk(e)
+    return found
+
+
+def _compile(exprs, bound: tuple, histories: dict):
+    """A callable of the bound variables' values returning the values of ``exprs``.
+
+    Integrals (outermost, shared between the expressions) become placeholders
+    computed by adaptive quadrature of their compiled integrands; state values
+    ``x_i(arg)`` become placeholders computed from the histories.
+    """
+    ints = list(dict.fromkeys(i for e in exprs for i in _outer(e, sympy.Integral)))
+    holders = [sympy.Dummy(f"q{k}") for k in range(len(ints))]
+    bodies = [e.xreplace(dict(zip(ints, holders))) for e in exprs]
+    apps = list(dict.fromkeys(a for b in bodies for a in b.atoms(AppliedUndef) if a.func in histories))
+    app_holders = [sympy.Dummy(f"x{k}") for k in range(len(apps))]
+    bodies = [b.xreplace(dict(zip(apps, app_holders))) for b in bodies]
+    leftovers = set().union(*[b.free_symbols for b in bodies]) - set(bound) - set(holders) - set(app_holders)
+    if leftovers:
+        raise ValueError(f"cannot evaluate numerically: unassigned symbols {sorted(map(str, leftovers))}")
+    f = sympy.lambdify(list(bound) + holders + app_holders, bodies, modules="math", cse=True)
+    arg_fns = [(histories[a.func], sympy.lambdify(list(bound), a.args[0], modules="math")) for a in apps]
+    quads = []
+    for I in ints:
+        (var, lo, hi), = I.limits
+        g = _compile([I.function], bound + (var,), histories)
+        quads.append((g, sympy.lambdify(list(bound), lo, modules="math"),
+                      sympy.lambdify(list(bound), hi, modules="math")))
+
+    def call(*vals):
+        qs = []
+        for g, flo, fhi in quads:
+            val, _err = scipy.integrate.quad(lambda x: g(*vals, x)[0], float(flo(*vals)), float(fhi(*vals)),
+                                             epsabs=1e-13, epsrel=1e-12, limit=200)
+            qs.append(val)
+        xs = [h(float(a(*vals))) for h, a in arg_fns]
+        out = f(*vals, *qs, *xs)
+        return [complex(v).real if isinstance(v, complex) else float(v) for v in out]
+
+    return call
