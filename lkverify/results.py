@@ -1,0 +1,135 @@
+"""Results and reports: what every lkverify job returns, prints and serialises.
+
+A :class:`Report` is the JSON object of the design card::
+
+    {"item": str, "parameters": {...},
+     "results": [{"kind", "name", "status", "value", "detail"}], "verdict": str}
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+
+import sympy
+
+from .status import Status
+
+__all__ = ["Result", "Report", "jsonable"]
+
+KINDS = ("hypothesis", "identity", "constant", "region", "envelope", "simulation")
+
+
+def jsonable(value):
+    """Convert SymPy/NumPy values to JSON-friendly ones (integers stay integers)."""
+    if value is None or isinstance(value, (bool, str)):
+        return value
+    if isinstance(value, dict):
+        return {str(k): jsonable(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [jsonable(v) for v in value]
+    if isinstance(value, sympy.MatrixBase):
+        return [[jsonable(x) for x in row] for row in value.tolist()]
+    if isinstance(value, sympy.Basic):
+        if value.is_Integer:
+            return int(value)
+        if value.is_number:
+            return float(value)
+        return str(value)
+    if isinstance(value, float):
+        return value if math.isfinite(value) else str(value)
+    if isinstance(value, int):
+        return value
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        return str(value)
+
+
+@dataclasses.dataclass(frozen=True)
+class Result:
+    """One checked statement.
+
+    Attributes
+    ----------
+    kind : str
+        One of ``hypothesis``, ``identity``, ``constant``, ``region``, ``envelope``, ``simulation``.
+    name : str
+    status : Status
+    value : object
+        The number (a margin, a constant) or a structured value (term differences).
+    detail : str
+        One readable sentence.
+    """
+
+    kind: str
+    name: str
+    status: Status
+    value: object = None
+    detail: str = ""
+
+    def __post_init__(self):
+        if self.kind not in KINDS:
+            raise ValueError(f"result kind must be one of {KINDS}, got {self.kind!r}")
+        if not isinstance(self.status, Status):
+            raise TypeError(f"status must be a Status, got {self.status!r}")
+
+    def to_json(self) -> dict:
+        return {"kind": self.kind, "name": self.name, "status": self.status.value,
+                "value": jsonable(self.value), "detail": self.detail}
+
+
+@dataclasses.dataclass(frozen=True)
+class Report:
+    """Everything one job established about one item."""
+
+    item: str
+    parameters: dict
+    results: tuple
+    verdict: str
+    text_details: tuple = ()
+
+    @property
+    def holds(self) -> bool:
+        """True when every result holds (no ``failed``, no ``undecided``)."""
+        return all(r.status.holds for r in self.results)
+
+    @property
+    def exit_code(self) -> int:
+        return 0 if self.holds else 1
+
+    def to_json(self) -> dict:
+        return {"item": self.item, "parameters": jsonable(self.parameters),
+                "results": [r.to_json() for r in self.results], "verdict": self.verdict}
+
+    def dumps(self) -> str:
+        return json.dumps(self.to_json(), indent=2, ensure_ascii=False)
+
+    def as_text(self) -> str:
+        """A readable table: kind, name, status, value, detail; then details and the verdict."""
+        rows = [(r.kind, r.name, r.status.value, _fmt_value(r.value), r.detail) for r in self.results]
+        head = ("kind", "name", "status", "value", "detail")
+        widths = [max(len(h), *(len(row[i]) for row in rows)) if rows else len(h) for i, h in enumerate(head[:4])]
+        lines = [f"{self.item}"]
+        if self.parameters:
+            lines.append("  parameters: " + ", ".join(f"{k}={v}" for k, v in self.parameters.items()))
+        lines.append("  " + "  ".join(h.ljust(w) for h, w in zip(head[:4], widths)) + "  detail")
+        for row in rows:
+            lines.append("  " + "  ".join(c.ljust(w) for c, w in zip(row[:4], widths)) + "  " + row[4])
+        for block in self.text_details:
+            lines.append("")
+            lines.extend("  " + line for line in block.splitlines())
+        lines.append(f"  verdict: {self.verdict}")
+        return "\n".join(lines)
+
+
+def _fmt_value(value) -> str:
+    if value is None:
+        return ""
+    if isinstance(value, dict):
+        return "see below" if value.get("differences") else ""
+    v = jsonable(value)
+    if isinstance(v, float):
+        return f"{v:.6g}"
+    return str(v)

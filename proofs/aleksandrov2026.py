@@ -1,0 +1,127 @@
+"""Aleksandrov (2026), Avtomatika i Telemekhanika — paper 000.
+
+"Control of the triaxial orientation of a rigid body with delay in the
+feedback", section 3: a delayed essentially nonlinear restoring torque.
+
+Euler (1) and Poisson (2) for the inertial unit vectors s1, s2, s3 (an
+orthonormal right-handed triad in body axes):
+
+    (2)  ṡᵢ = −ω × sᵢ,  i = 1, 2, 3,
+    (5)  L = α1 s1×r1 + α2 s2×r2,      f = ½(α1‖s1−r1‖² + α2‖s2−r2‖²),
+    (7)  Θω̇ + ω×(Θω) = −f^ν(t−τ) L(t−τ) − Dω.
+
+Theorem 1: for every τ > 0 the equilibrium (3) ω = 0, sᵢ = rᵢ is
+asymptotically stable.  Functional (9) (printed with the label (1)):
+
+    V = f + (γ/2)ωᵀΘω + LᵀD⁻¹Θω + ∫_{t−τ}^t (λ(ξ+τ−t)+μ) W(ξ) dξ − LᵀD⁻¹ ∫_{t−τ}^t f^ν(ξ)L(ξ) dξ,
+    W = ‖s1−r1‖^{2ν+2} + ‖s2−r2‖^{2ν+2}.
+
+The paper then prints V̇ along (2),(7).  That print is entered below exactly as
+printed, term by term; the one liberty is its ``ω^⊤(t) L^⊤(t−τ)``, a row times
+a row, read as the scalar product ωᵀL(t−τ).  Whatever the comparison with the
+derivation finds is the result.
+
+Defaults are the example of section 5: A = 20, B = 25, C = 35,
+r1 = (1/√2, 1/√2, 0), r2 = (−1/√2, 1/√2, 0), r3 = (0, 0, 1), α1 = α2 = 1,
+ν = 0.3, D = 2I, τ = 1.
+"""
+
+from lkverify import (Equation, Frame, Functional, Parameters, System, Term, Vector, cross, dot, norm_power,
+                      norm_squared, quad, t, window_integral, xi)
+from lkverify.claims import DerivativeClaim, Hypothesis
+from lkverify.items import Theorem
+
+PAPER = "aleksandrov2026"
+
+P = Parameters()
+Theta = P.diagonal_matrix("Theta", ["A", "B", "C"], default="diag(20,25,35)", latex=r"\Theta")
+D = P.spd_matrix("D", 3, default="diag(2,2,2)", description="damping matrix, constant PD")
+alpha1 = P.scalar("alpha1", positive=True, default=1, latex=r"\alpha_1")
+alpha2 = P.scalar("alpha2", positive=True, default=1, latex=r"\alpha_2")
+nu = P.scalar("nu", positive=True, default="0.3", latex=r"\nu")
+tau = P.delay("tau", default=1)
+r1 = P.unit_vector("r1", default="[1/sqrt(2), 1/sqrt(2), 0]")
+r2 = P.unit_vector("r2", default="[-1/sqrt(2), 1/sqrt(2), 0]")
+r3 = P.unit_vector("r3", default="[0, 0, 1]")
+P.orthonormal("r1", "r2", "r3")
+# parameters of the functional (9)
+gamma = P.scalar("gamma", positive=True, latex=r"\gamma")
+lam = P.scalar("lam", positive=True, latex=r"\lambda")
+mu = P.scalar("mu", positive=True, latex=r"\mu")
+
+omega = Vector("omega", latex=r"\omega", text="ω")
+s1, s2, s3 = Frame(("s1", "s2", "s3"), latex=("s_1", "s_2", "s_3"))
+
+
+def L(time):
+    """(5) L = α1 s1×r1 + α2 s2×r2."""
+    return alpha1 * cross(s1(time), r1) + alpha2 * cross(s2(time), r2)
+
+
+def f(time):
+    """f = ½(α1‖s1−r1‖² + α2‖s2−r2‖²)."""
+    return (alpha1 * norm_squared(s1(time) - r1) + alpha2 * norm_squared(s2(time) - r2)) / 2
+
+
+def W(time):
+    """‖s1−r1‖^{2ν+2} + ‖s2−r2‖^{2ν+2}."""
+    return norm_power(s1(time) - r1, 2 * nu + 2) + norm_power(s2(time) - r2, 2 * nu + 2)
+
+
+D_inv = D.inv()
+
+# (2), (7)
+system = System([
+    Equation(omega, [
+        Term(-cross(omega(t), Theta * omega(t)), text="−ω×(Θω)", latex=r"-\omega\times(\Theta\omega)"),
+        Term(-f(t - tau) ** nu * L(t - tau), text="−f^ν(t−τ)L(t−τ)", latex=r"-f^\nu(t-\tau)L(t-\tau)"),
+        Term(-D * omega(t), text="−Dω", latex=r"-D\omega"),
+    ], mass=Theta, mass_text="Θ", mass_latex=r"\Theta"),
+    *[Equation(si, [Term(-cross(omega(t), si(t)), text=f"−ω×{si.name}", latex=rf"-\omega\times {si.latex}")])
+      for si in (s1, s2, s3)],
+], parameters=P, name="(2),(7)")
+
+int_fL = window_integral(f(xi) ** nu * L(xi), tau)  # ∫_{t−τ}^t f^ν(ξ)L(ξ)dξ
+
+# (9)
+functional = Functional([
+    Term(f(t), text="f", latex="f"),
+    Term(gamma / 2 * quad(omega(t), Theta), text="(γ/2)ωᵀΘω", latex=r"\frac{\gamma}{2}\omega^\top\Theta\omega"),
+    Term(quad(L(t), D_inv * Theta, omega(t)), text="LᵀD⁻¹Θω", latex=r"L^\top D^{-1}\Theta\omega"),
+    Term(window_integral(W(xi), tau, weight=lam * (xi + tau - t) + mu), text="∫(λ(ξ+τ−t)+μ)(‖s1−r1‖^{2ν+2}+‖s2−r2‖^{2ν+2})dξ",
+         latex=r"\int_{t-\tau}^t(\lambda(\xi+\tau-t)+\mu)(\|s_1-r_1\|^{2\nu+2}+\|s_2-r_2\|^{2\nu+2})d\xi"),
+    Term(-quad(L(t), D_inv, int_fL), text="−LᵀD⁻¹∫f^ν(ξ)L(ξ)dξ", latex=r"-L^\top D^{-1}\int_{t-\tau}^t f^\nu(\xi)L(\xi)d\xi"),
+], name="(9)")
+
+M = alpha1 * cross(cross(omega(t), s1(t)), r1) + alpha2 * cross(cross(omega(t), s2(t)), r2)
+
+# V̇ as printed after (9), line by line.
+printed_Vdot = [
+    Term(-gamma * quad(omega(t), D), text="−γωᵀDω", latex=r"-\gamma\omega^\top D\omega"),
+    Term(-f(t) ** nu * quad(L(t), D_inv), text="−f^ν LᵀD⁻¹L", latex=r"-f^\nu L^\top D^{-1}L"),
+    Term(-quad(L(t), D_inv, cross(omega(t), Theta * omega(t))), text="−LᵀD⁻¹(ω×(Θω))",
+         latex=r"-L^\top D^{-1}(\omega\times(\Theta\omega))"),
+    Term(gamma * f(t - tau) ** nu * dot(omega(t), L(t - tau)), text="+γf^ν(t−τ)ωᵀL(t−τ)",
+         latex=r"+\gamma f^\nu(t-\tau)\omega^\top L(t-\tau)"),
+    Term(quad(M, D_inv, int_fL - Theta * omega(t)), text="(α1(ω×s1)×r1+α2(ω×s2)×r2)ᵀD⁻¹(∫f^νL dξ − Θω)",
+         latex=r"(\alpha_1(\omega\times s_1)\times r_1+\alpha_2(\omega\times s_2)\times r_2)^\top D^{-1}"
+               r"\left(\int_{t-\tau}^t f^\nu L\,d\xi-\Theta\omega\right)"),
+    Term(-lam * window_integral(W(xi), tau), text="−λ∫(‖s1−r1‖^{2ν+2}+‖s2−r2‖^{2ν+2})dξ",
+         latex=r"-\lambda\int_{t-\tau}^t(\|s_1-r_1\|^{2\nu+2}+\|s_2-r_2\|^{2\nu+2})d\xi"),
+    Term((lam * tau + mu) * W(t), text="(λτ+μ)(‖s1−r1‖^{2ν+2}+‖s2−r2‖^{2ν+2})",
+         latex=r"(\lambda\tau+\mu)(\|s_1-r_1\|^{2\nu+2}+\|s_2-r_2\|^{2\nu+2})"),
+    Term(-mu * W(t - tau), text="−μ(‖s1(t−τ)−r1‖^{2ν+2}+‖s2(t−τ)−r2‖^{2ν+2})",
+         latex=r"-\mu(\|s_1(t-\tau)-r_1\|^{2\nu+2}+\|s_2(t-\tau)-r_2\|^{2\nu+2})"),
+]
+
+theorem1 = Theorem(
+    "theorem1",
+    title="Theorem 1: delayed nonlinear restoring torque, stable for every τ > 0 (printed V̇ checked)",
+    system=system,
+    functional=functional,
+    hypotheses=[Hypothesis("tau > 0", tau), Hypothesis("nu > 0", nu),
+                Hypothesis("alpha1 > 0", alpha1), Hypothesis("alpha2 > 0", alpha2)],
+    claims=[DerivativeClaim("Vdot_printed", functional, system, printed_Vdot,
+                            description="the printed V̇ along (2),(7), as printed")],
+    unchecked=["the bounds with c1…c10, inequality (10) and the estimates (11), (12)"],
+)
