@@ -116,6 +116,15 @@ class Canonicalizer:
             value = sympy.Pow(base, exp)
             if value.is_Rational:
                 return value
+            # b^(e' + c): split the integer part n = ⌊c⌋ of the constant c off the exponent,
+            # so that h^(ν−1), h^ν/h and h^ν·h^(−1) all become atom(h^(ν + c − n))·b^n.
+            const, _ = exp.as_coeff_Add()
+            n = sympy.floor(const) if const.is_Rational else sympy.S.Zero
+            if n != 0:
+                rest = sympy.expand(exp - n)
+                power = self._atom_for(sympy.Pow(base, rest, evaluate=False)) if rest != 0 else sympy.S.One
+                factor = sympy.Pow(self.atomize(base), n) if n > 0 else sympy.Pow(self._inverse(base), -n)
+                return power * factor
             return self._atom_for(sympy.Pow(base, exp, evaluate=False))
         if isinstance(e, sympy.Integral):
             return self._integral(e)
