@@ -3,6 +3,7 @@
 ``lkverify``                       report of every catalogued item at the papers' defaults
 ``lkverify list``                  the catalogue
 ``lkverify check ITEM [--set NAME=VALUE]... [--json] [--budget S]``
+``lkverify simulate ITEM [--set NAME=VALUE]... [--history STATE=VALUE]... [--t-end T] [--plot FILE.png] [--envelope] [--json]``
 
 Exit codes: 0 every result holds (for the bare report: the report was produced),
 1 something failed or is undecided, 2 bad input.
@@ -41,6 +42,16 @@ def _build_parser() -> argparse.ArgumentParser:
     c.add_argument("--json", action="store_true", help="print the JSON object of the design card")
     c.add_argument("--budget", type=float, default=60.0, metavar="SECONDS",
                    help="time budget per identity; when spent the identity is undecided (default 60)")
+    s = sub.add_parser("simulate", help="integrate a numerical example and check the paper's claims about it")
+    s.add_argument("item", help="an example (aleksandrov2023.fig6), or path/to/file.py[::item]")
+    s.add_argument("--set", dest="sets", action="append", default=[], metavar="NAME=VALUE",
+                   help="a parameter value for every run of the example")
+    s.add_argument("--history", dest="histories", action="append", default=[], metavar="STATE=VALUE",
+                   help="a constant initial history for a state, e.g. omega=[0.1,0.1,0.1]")
+    s.add_argument("--t-end", type=float, default=None, metavar="T", help="final time (default: the example's)")
+    s.add_argument("--plot", metavar="FILE.png", help="write the figure (paper style) to this PNG file")
+    s.add_argument("--envelope", action="store_true", help="cross-check the example's decay envelope and plot it")
+    s.add_argument("--json", action="store_true", help="print the JSON object of the design card")
     return p
 
 
@@ -60,7 +71,8 @@ def main(argv=None) -> int:
         if args.command == "list":
             for pf in catalogue():
                 for name, item in pf.items.items():
-                    print(f"{pf.paper}.{name:<12} {item.title}")
+                    kind = "example" if type(item).__name__ == "Example" else "theorem"
+                    print(f"{pf.paper + '.' + name:<28} {kind:<8} {item.title}")
             return 0
         if args.command in (None, "report"):
             return _report(json_out=getattr(args, "json", False))
@@ -77,10 +89,67 @@ def main(argv=None) -> int:
             else:
                 print("\n\n".join(r.as_text() for r in reports))
             return max(r.exit_code for r in reports)
+        if args.command == "simulate":
+            return _simulate(args)
     except InputError as exc:
         print(f"lkverify: error: {exc}", file=sys.stderr)
         return 2
     return 0  # pragma: no cover
+
+
+def _bar(enabled: bool, label: str):
+    last = [-1]
+
+    def update(fraction: float):
+        if not enabled:
+            return
+        k = int(40 * min(max(fraction, 0.0), 1.0))
+        if k != last[0]:
+            last[0] = k
+            end = "\n" if k == 40 else ""
+            print(f"\r  {label[:40]:40s} [{'#' * k}{'.' * (40 - k)}] {100 * fraction:5.1f}%", end=end,
+                  file=sys.stderr, flush=True)
+
+    return update
+
+
+def _simulate(args) -> int:
+    from .example import Example
+    from .parse import parse_value
+
+    if args.t_end is not None and not (args.t_end > 0 and args.t_end < float("inf")):
+        raise InputError(f"--t-end: expected a positive finite time, got {args.t_end}")
+    if args.plot is not None and not args.plot.lower().endswith(".png"):
+        raise InputError(f"--plot: expected a file name ending in .png, got {args.plot}")
+    values = dict(parse_assignment(s) for s in args.sets)
+    histories = {}
+    for h in args.histories:
+        name, text = parse_assignment(h)
+        histories[name] = parse_value(text, name=name)
+    items = [it for it in find_items(args.item)]
+    examples = [it for it in items if isinstance(it, Example)]
+    if not examples:
+        raise InputError(f"{args.item}: not a numerical example; `lkverify list` marks examples "
+                         f"(e.g. aleksandrov2023.fig6); use `lkverify check` for theorems")
+    tty = not args.json and sys.stderr.isatty()
+    say = _progress(tty)
+    reports = []
+    for ex in examples:
+        trajectories = ex.simulate(values, t_end=args.t_end, histories=histories, progress=say,
+                                   fraction=lambda label: _bar(tty, label))
+        reports.append(ex.run(values, trajectories=trajectories, envelope=args.envelope or ex.envelope is not None))
+        if args.plot:
+            path = args.plot if len(examples) == 1 else args.plot.replace(".png", f"_{ex.name}.png")
+            ex.plot(trajectories, path, envelope=args.envelope)
+            say(f"figure written to {path}")
+            if not args.json:
+                print(f"figure: {path}")
+    if args.json:
+        out = reports[0].to_json() if len(reports) == 1 else [r.to_json() for r in reports]
+        print(json.dumps(out, indent=2, ensure_ascii=False))
+    else:
+        print("\n\n".join(r.as_text() for r in reports))
+    return max(r.exit_code for r in reports)
 
 
 def _report(*, json_out: bool) -> int:

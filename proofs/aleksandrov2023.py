@@ -123,3 +123,82 @@ theorem3 = Theorem(
                             description="V̇ along (10),(12) equals the structured form with −(a−τb)‖s−r‖^{μ−1}(s×r)ᵀF⁻¹(s×r)")],
     unchecked=["the bounds on V and V̇ with c1…c9 and the region δ (Young's inequality)"],
 )
+
+
+# ---------------------------------------------------------------------------------------------
+# Section 6: numerical examples (Figs. 1–7).  Θ = diag(5,6,4), r = (1,1,1)/√3, F = h·I, constant
+# initial functions on [−τ, 0] from the aircraft angles (φ, θ, ψ) = (0.5, 0.6, −0.8), ω = (1,1,1).
+import numpy as np  # noqa: E402
+
+from lkverify.example import (Converges, DoesNotConverge, EnvelopeSpec, Example, Run,  # noqa: E402
+                              Sensitive, Series)
+from lkverify.rigidbody import chi_norm, inertial_vectors_from_angles  # noqa: E402
+
+R_TARGET = np.full(3, 1 / np.sqrt(3))
+
+
+def initial_history(angles, omega0):
+    """Constant history: s from the aircraft angles (default convention of lkverify.rigidbody), ω."""
+    return {"s": list(inertial_vectors_from_angles(*angles, R_TARGET)), "omega": list(omega0)}
+
+
+SECTION6 = initial_history((0.5, 0.6, -0.8), (1.0, 1.0, 1.0))
+FIG7 = initial_history((0.8, 0.8, -0.8), (0.1, 0.1, 0.1))
+
+
+def _s_minus_r(states):
+    return np.linalg.norm(states["s"] - R_TARGET, axis=1)
+
+
+def _distance(states):
+    """‖χ(t)‖ = ‖(s − r, ω)‖ in R⁶."""
+    return np.sqrt(_s_minus_r(states) ** 2 + np.sum(states["omega"] ** 2, axis=1))
+
+
+DIRECTION_COSINES = [Series(f"s_{c}", lambda st, i=i: st["s"][:, i]) for i, c in enumerate("xyz")]
+
+
+def _fig(name, title, values, claims, *, t_end, history=SECTION6, envelope=None, samples=4001):
+    return Example(name, title=title, runs=[Run(title, system, values, history)], t_end=t_end,
+                   series=DIRECTION_COSINES, distance=_distance, claims=claims, ylabel="direction cosines",
+                   envelope=envelope, samples=samples, plot_until=100)
+
+
+def _F(h):
+    return f"diag({h},{h},{h})"
+
+
+FIG1 = {"F": _F("0.7"), "a": "2", "b": "2", "tau": "0.9", "mu": "1"}
+fig1 = _fig("fig1", "Fig. 1: b = 2, μ = 1", FIG1, [Converges("Fig. 1: b = 2, μ = 1")], t_end=100)
+fig2 = _fig("fig2", "Fig. 2: b = −2, μ = 1", {**FIG1, "b": "-2"},
+            [DoesNotConverge("Fig. 2: b = −2, μ = 1", floor=0.05)], t_end=100)
+fig3 = _fig("fig3", "Fig. 3: b = −2, μ = 2", {**FIG1, "b": "-2", "mu": "2"},
+            [Converges("Fig. 3: b = −2, μ = 2")], t_end=1000)
+FIG4 = {"F": _F("0.2"), "a": "0.6", "b": "-0.6", "tau": "0.9", "mu": "1"}
+fig4 = _fig("fig4", "Fig. 4: a = 0.6, h = 0.2, b = −0.6, μ = 1", FIG4,
+            [DoesNotConverge("Fig. 4: a = 0.6, h = 0.2, b = −0.6, μ = 1", floor=0.05),
+             Sensitive("Fig. 4: a = 0.6, h = 0.2, b = −0.6, μ = 1")], t_end=200)
+fig5 = _fig("fig5", "Fig. 5: a = 0.6, h = 0.2, b = −0.6, μ = 2", {**FIG4, "mu": "2"},
+            [Converges("Fig. 5: a = 0.6, h = 0.2, b = −0.6, μ = 2", tol=1e-3)], t_end=1000)
+FIG6 = {"F": _F("1"), "a": "0", "b": "-1", "tau": "1", "mu": "2"}
+fig6 = _fig("fig6", "Fig. 6: a = 0, h = 1, τ = 1, b = −1, μ = 2", FIG6,
+            [Converges("Fig. 6: a = 0, h = 1, τ = 1, b = −1, μ = 2")], t_end=1000)
+
+# Estimate (15) as printed: ‖s(t) − r‖ ≤ 9.21‖χ‖_τ (1 + 0.23‖χ‖_τ (t − t0))^{−1} for ‖χ‖_τ < 0.28.
+PRINTED_15 = {"d1": 9.21, "d2": 7.44, "d3": 0.23, "delta_tilde": 0.28}
+
+
+def _chi(run):
+    """‖χ‖_τ of a constant history: the uniform norm of (s − r, ω) in R⁶ (lkverify.rigidbody.chi_norm)."""
+    s = np.asarray(run.history["s"], dtype=float)
+    w = np.asarray(run.history["omega"], dtype=float)
+    return float(chi_norm(s - R_TARGET, w))
+
+
+fig7 = _fig("fig7", "Fig. 7: Fig. 6 gains, (φ, θ, ψ) = (0.8, 0.8, −0.8), ω = 0.1(1,1,1)", FIG6,
+            [Converges("Fig. 7: Fig. 6 gains, (φ, θ, ψ) = (0.8, 0.8, −0.8), ω = 0.1(1,1,1)")],
+            t_end=1500, history=FIG7,
+            envelope=EnvelopeSpec("(15) as printed: 9.21‖χ‖_τ/(1 + 0.23‖χ‖_τ t)",
+                                  Series("‖s − r‖", _s_minus_r),
+                                  lambda tt, chi: PRINTED_15["d1"] * chi / (1 + PRINTED_15["d3"] * chi * tt),
+                                  _chi, "Fig. 7: Fig. 6 gains, (φ, θ, ψ) = (0.8, 0.8, −0.8), ω = 0.1(1,1,1)"))

@@ -26,8 +26,8 @@ r1 = (1/√2, 1/√2, 0), r2 = (−1/√2, 1/√2, 0), r3 = (0, 0, 1), α1 = α2
 ν = 0.3, D = 2I, τ = 1.
 """
 
-from lkverify import (Equation, Frame, Functional, Parameters, System, Term, Vector, cross, dot, norm_power,
-                      norm_squared, quad, t, window_integral, xi)
+from lkverify import (Equation, Frame, Functional, Parameters, System, Term, Vector, cross, dot, memory_integral,
+                      norm_power, norm_squared, quad, t, window_integral, xi)
 from lkverify.claims import DerivativeClaim, Hypothesis
 from lkverify.items import Theorem
 
@@ -124,4 +124,59 @@ theorem1 = Theorem(
     claims=[DerivativeClaim("Vdot_printed", functional, system, printed_Vdot,
                             description="the printed V̇ along (2),(7), as printed")],
     unchecked=["the bounds with c1…c10, inequality (10) and the estimates (11), (12)"],
+)
+
+
+# ---------------------------------------------------------------------------------------------
+# Section 4: the nonlinear PID (8), (13), with the scalar kernel G(ζ) = g(ζ)·I (Remark 3).
+beta = P.scalar("beta", default=1, latex=r"\beta", description="proportional gain β (β ≤ 0 allowed)")
+g = P.kernel("g", default="exp(-2*zeta)", description="memory kernel, G(ζ) = g(ζ) I")
+
+system_pid = System([
+    Equation(omega, [
+        Term(-cross(omega(t), Theta * omega(t)), text="−ω×(Θω)", latex=r"-\omega\times(\Theta\omega)"),
+        Term(-beta * f(t) ** nu * L(t), text="−βf^ν L", latex=r"-\beta f^\nu L"),
+        Term(-D * omega(t), text="−Dω", latex=r"-D\omega"),
+        Term(-memory_integral(f(xi) ** nu * g(t - xi) * L(xi)), text="−∫_0^t f^ν(ξ)G(t−ξ)L(ξ)dξ",
+             latex=r"-\int_0^t f^\nu(\xi)G(t-\xi)L(\xi)d\xi"),
+    ], mass=Theta, mass_text="Θ", mass_latex=r"\Theta"),
+    *[Equation(si, [Term(-cross(omega(t), si(t)), text=f"−ω×{si.name}", latex=rf"-\omega\times {si.latex}")])
+      for si in (s1, s2, s3)],
+], parameters=P, name="(2),(13)")
+
+# ---------------------------------------------------------------------------------------------
+# Section 5: the example.  t0 = 0, constant initial functions on [−1, 0].
+import numpy as np  # noqa: E402
+
+from lkverify.example import Converges, Example, FasterThan, Run, Series, SmootherThan  # noqa: E402
+
+HISTORY = {"omega": [0.3, -0.4, 0.4], "s1": [0, 0, 1], "s2": [2 / np.sqrt(5), 1 / np.sqrt(5), 0],
+           "s3": [-1 / np.sqrt(5), 2 / np.sqrt(5), 0]}
+R1 = np.array([1, 1, 0]) / np.sqrt(2)
+R2 = np.array([-1, 1, 0]) / np.sqrt(2)
+
+
+def _e1(states):
+    return np.linalg.norm(states["s1"] - R1, axis=1)
+
+
+def _e2(states):
+    return np.linalg.norm(states["s2"] - R2, axis=1)
+
+
+def _distance(states):
+    return np.sqrt(_e1(states) ** 2 + _e2(states) ** 2 + np.sum(states["omega"] ** 2, axis=1))
+
+
+DELAYED, PID = "delayed feedback (7)", "PID (13), G = exp(−2ζ)I"
+example = Example(
+    "example",
+    title="Section 5: delayed restoring torque (Fig. 1) and nonlinear PID (Fig. 2)",
+    runs=[Run(DELAYED, system, {}, HISTORY), Run(PID, system_pid, {}, HISTORY)],
+    t_end=1000,
+    series=[Series("‖s1 − r1‖", _e1), Series("‖s2 − r2‖", _e2)],
+    distance=_distance,
+    claims=[Converges(DELAYED), Converges(PID), FasterThan(PID, DELAYED, level=1e-2), SmootherThan(PID, DELAYED)],
+    ylabel="‖s_i − r_i‖",
+    plot_until=400,
 )
