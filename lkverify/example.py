@@ -243,6 +243,29 @@ def _fmt(x) -> str:
     return "never" if x is None else f"t = {x:.4g}"
 
 
+def _damping_expr(h):
+    """The damping as a SymPy expression in t (accepts an expression or a string, parsed safely)."""
+    import sympy
+
+    from .parse import parse_value
+    from .symbols import t
+
+    expr = parse_value(h, name="damping", variables={"t": t}) if isinstance(h, str) else sympy.sympify(h)
+    if expr.free_symbols - {t}:
+        raise ValueError(f"damping: expected an expression in t, got {expr}")
+    return expr
+
+
+def _tail_integral(h, T: float) -> float:
+    """∫_T^∞ h(t) dt, exactly by SymPy (inf when it diverges)."""
+    import sympy
+
+    from .symbols import t
+
+    val = sympy.integrate(_damping_expr(h), (t, sympy.nsimplify(T), sympy.oo))
+    return float("inf") if val in (sympy.oo, sympy.zoo) or not val.is_finite else float(val)
+
+
 # -- claims about runs --------------------------------------------------------------------------
 class RunClaim:
     """A statement a paper makes about a run; ``check`` returns a simulation Result."""
@@ -314,7 +337,7 @@ class BoundedNotAttractive(RunClaim):
 
     run: str
     measure: Callable
-    damping: Callable
+    damping: object  # the damping h as an expression in t (or a string)
     bound: float
     fraction: float = 1e-3
     windows: int = 8
@@ -325,7 +348,11 @@ class BoundedNotAttractive(RunClaim):
 
     def check(self, example, trajectories):
         import scipy.integrate
+        import sympy
 
+        from .symbols import t as tsym
+
+        h = sympy.lambdify([tsym], _damping_expr(self.damping), modules="numpy")
         tr = trajectories[self.run]
         d = np.asarray(example.distance(tr.states))
         E = np.asarray(self.measure(tr.states))
@@ -333,10 +360,10 @@ class BoundedNotAttractive(RunClaim):
         idx = np.searchsorted(tr.t, edges).clip(0, len(tr.t) - 1)
         rates = []
         for i, j in zip(idx[:-1], idx[1:]):
-            H = scipy.integrate.quad(self.damping, tr.t[i], tr.t[j], limit=200)[0]
+            H = scipy.integrate.quad(h, tr.t[i], tr.t[j], limit=200)[0]
             rates.append(np.log(E[i] / E[j]) / H)
         rate = max(0.0, float(max(rates)))
-        tail, _ = scipy.integrate.quad(self.damping, tr.t[-1], np.inf, limit=500)
+        tail = _tail_integral(self.damping, float(tr.t[-1]))
         lower = float(E[-1] * np.exp(-rate * tail)) if np.isfinite(tail) else 0.0
         ok = tr.outcome.value == "success" and float(np.max(d)) <= self.bound and lower > self.fraction * E[-1]
         return self._res(ok, {"max_distance": float(np.max(d)), "measured_rate": rate, "tail_integral": tail,

@@ -127,7 +127,7 @@ example = Example(
             Series("ω_z", lambda st: st["omega"][:, 2])],
     distance=_distance,
     claims=[Converges(CONVERGING, tol=1e-3, by=800),
-            BoundedNotAttractive(BOUNDED, _energy, lambda t: (1 + t) ** (-8 / 7), bound=3.0),
+            BoundedNotAttractive(BOUNDED, _energy, "(1+t)**(-8/7)", bound=3.0),
             DoesNotConverge(BOUNDED, floor=1e-2)],
     ylabel="ω components",
     samples=12001,
