@@ -52,6 +52,15 @@ def _build_parser() -> argparse.ArgumentParser:
     s.add_argument("--plot", metavar="FILE.png", help="write the figure (paper style) to this PNG file")
     s.add_argument("--envelope", action="store_true", help="cross-check the example's decay envelope and plot it")
     s.add_argument("--json", action="store_true", help="print the JSON object of the design card")
+    k = sub.add_parser("constants", help="compute and certify the constants, region and envelope of a proof")
+    k.add_argument("item", help="e.g. aleksandrov2023.theorem3, aleksandrov2017.lemma1")
+    k.add_argument("--set", dest="sets", action="append", default=[], metavar="NAME=VALUE")
+    k.add_argument("--json", action="store_true", help="print the JSON object of the design card")
+    k.add_argument("--plot", metavar="FILE.png", help="write the figure (envelope, or δ(ε) for a lemma)")
+    k.add_argument("--budget", type=float, default=150.0, metavar="SECONDS",
+                   help="time budget; when spent the unfinished results are undecided (default 150)")
+    k.add_argument("--goal", default=None, help="which trade-off to optimise, for items that offer several "
+                   "(aleksandrov2023.theorem3: paper = match d1, d2, d3 and maximise δ̃; region = maximise δ̃)")
     return p
 
 
@@ -71,7 +80,7 @@ def main(argv=None) -> int:
         if args.command == "list":
             for pf in catalogue():
                 for name, item in pf.items.items():
-                    kind = "example" if type(item).__name__ == "Example" else "theorem"
+                    kind = {"Example": "example", "Check": "check"}.get(type(item).__name__, "theorem")
                     print(f"{pf.paper + '.' + name:<28} {kind:<8} {item.title}")
             return 0
         if args.command in (None, "report"):
@@ -91,6 +100,8 @@ def main(argv=None) -> int:
             return max(r.exit_code for r in reports)
         if args.command == "simulate":
             return _simulate(args)
+        if args.command == "constants":
+            return _constants(args)
     except InputError as exc:
         print(f"lkverify: error: {exc}", file=sys.stderr)
         return 2
@@ -144,6 +155,34 @@ def _simulate(args) -> int:
             say(f"figure written to {path}")
             if not args.json:
                 print(f"figure: {path}")
+    if args.json:
+        out = reports[0].to_json() if len(reports) == 1 else [r.to_json() for r in reports]
+        print(json.dumps(out, indent=2, ensure_ascii=False))
+    else:
+        print("\n\n".join(r.as_text() for r in reports))
+    return max(r.exit_code for r in reports)
+
+
+def _constants(args) -> int:
+    if not (args.budget > 0 and args.budget < float("inf")):
+        raise InputError(f"--budget: expected a positive number of seconds, got {args.budget}")
+    if args.plot is not None and not args.plot.lower().endswith(".png"):
+        raise InputError(f"--plot: expected a file name ending in .png, got {args.plot}")
+    values = dict(parse_assignment(s) for s in args.sets)
+    items = [it for it in find_items(args.item) if it.constants is not None]
+    if not items:
+        raise InputError(f"{args.item}: no constants job is declared for it; items with one: "
+                         + ", ".join(f"{pf.paper}.{n}" for pf in catalogue() for n, it in pf.items.items()
+                                     if it.constants is not None))
+    say = _progress(not args.json and sys.stderr.isatty())
+    reports = []
+    for item in items:
+        report, extra = item.run_constants(values, budget=args.budget, progress=say, goal=args.goal)
+        reports.append(report)
+        if args.plot and extra:
+            item.constants.plot(extra, args.plot, values=item.parameters.resolve(values, use_defaults=True))
+            if not args.json:
+                print(f"figure: {args.plot}")
     if args.json:
         out = reports[0].to_json() if len(reports) == 1 else [r.to_json() for r in reports]
         print(json.dumps(out, indent=2, ensure_ascii=False))

@@ -31,7 +31,7 @@ from .results import Report, Result
 from .status import Status
 from .system import System
 
-__all__ = ["Item", "Theorem"]
+__all__ = ["Item", "Theorem", "Check"]
 
 
 class Item:
@@ -40,6 +40,7 @@ class Item:
     name: str = ""
     title: str = ""
     paper: str = ""
+    constants = None  # a lkverify.constants.ConstantsJob, for `lkverify constants`
 
     @property
     def qualified_name(self) -> str:
@@ -48,6 +49,25 @@ class Item:
     def run(self, values: Mapping[str, object] | None = None, *, budget: float | None = 60.0,
             progress: Callable[[str], None] | None = None) -> Report:
         raise NotImplementedError
+
+    def run_constants(self, values: Mapping[str, object] | None = None, *, budget: float = 120.0,
+                      progress: Callable[[str], None] | None = None, goal: str | None = None) -> tuple[Report, dict]:
+        """The ``constants`` job: certified constants, parameters, region and envelope.
+
+        Raises
+        ------
+        InputError
+            The item has no constants job, or the values are bad.
+        """
+        from .errors import InputError
+
+        if self.constants is None:
+            raise InputError(f"{self.qualified_name}: no constants job is declared for this item; "
+                             f"items with one: see `lkverify list`")
+        P = self.parameters
+        everything = P.resolve(values or {}, use_defaults=True)
+        shown = self.shown(everything) if hasattr(self, "shown") else {k: _show(v) for k, v in everything.items()}
+        return self.constants.run(self.qualified_name, everything, shown, budget=budget, progress=progress, goal=goal)
 
 
 class Theorem(Item):
@@ -65,11 +85,13 @@ class Theorem(Item):
     unchecked : sequence of str
         Steps of the proof this item does not check (reported in the verdict,
         so that a verdict never claims more than was checked).
+    constants : ConstantsJob, optional
+        What ``lkverify constants`` computes and certifies for this item.
     """
 
     def __init__(self, name: str, *, system: System, functional: Functional | None = None,
                  hypotheses: Sequence[Hypothesis] = (), claims: Sequence = (), title: str = "",
-                 unchecked: Sequence[str] = (), paper: str = ""):
+                 unchecked: Sequence[str] = (), paper: str = "", constants=None):
         if not name.isidentifier():
             raise ValueError(f"item name must be an identifier, got {name!r}")
         for c in claims:
@@ -83,6 +105,7 @@ class Theorem(Item):
         self.title = title
         self.unchecked = tuple(unchecked)
         self.paper = paper
+        self.constants = constants
 
     @property
     def parameters(self) -> Parameters:
@@ -148,3 +171,39 @@ def _show(value) -> str:
             return f"[{', '.join(str(x) for x in value)}]"
         return str(value.tolist())
     return str(value)
+
+
+class Check(Item):
+    """An item made of direct checks: callables ``check(values) → list of Result``.
+
+    Used for statements of a proof that are not identities, e.g. a printed
+    inequality step refuted at an exact witness.
+    """
+
+    def __init__(self, name: str, *, parameters: Parameters, checks: Sequence[Callable], title: str = "",
+                 paper: str = "", relevant: Sequence[str] | None = None):
+        if not name.isidentifier():
+            raise ValueError(f"item name must be an identifier, got {name!r}")
+        self.name, self.title, self.paper = name, title, paper
+        self.relevant = tuple(relevant) if relevant is not None else None
+        self._parameters = parameters
+        self.checks = tuple(checks)
+
+    @property
+    def parameters(self) -> Parameters:
+        return self._parameters
+
+    def run(self, values: Mapping[str, object] | None = None, *, budget: float | None = 60.0,
+            progress: Callable[[str], None] | None = None) -> Report:
+        everything = self.parameters.resolve(values or {}, use_defaults=True)
+        results: list[Result] = []
+        for check in self.checks:
+            results += check(everything)
+        failed = [r.name for r in results if r.status is Status.FAILED]
+        undecided = [r.name for r in results if r.status is Status.UNDECIDED]
+        verdict = (f"failed: {', '.join(failed)}" if failed else f"undecided: {', '.join(undecided)}" if undecided
+                   else "every check holds")
+        return Report(self.qualified_name, self.shown(everything), tuple(results), verdict)
+
+    def shown(self, values: Mapping) -> dict:
+        return {k: _show(v) for k, v in values.items() if self.relevant is None or k in self.relevant}

@@ -133,3 +133,139 @@ example = Example(
     samples=12001,
     plot_until=600,
 )
+
+
+# ---------------------------------------------------------------------------------------------
+# Lemma 1 (= inequality (10) of paper 000): for a1, a2 > 0 and ε ∈ (0, 1) there is δ > 0 with
+#   (6)  ‖a1 r1×s1 + a2 r2×s2‖² ≥ ε(a1²‖r1−s1‖² + a2²‖r2−s2‖²)  when ‖s1−r1‖² + ‖s2−r2‖² < δ².
+# s_i = R r_i for a rotation R (the triad moves rigidly).  With the unit quaternion (q0, σu),
+# σ = sin(φ/2) ∈ [0, 1] for the rotation angle φ ∈ [0, π]:  s_i − r_i = σ Δ_i,
+#   Δ_i = 2q0 u×r_i + 2σ u×(u×r_i),  q0 = √(1 − σ²)   (no division: no removable singularity),
+# and (6) divided by σ² reads F(σ, u) = ‖Σ a_i r_i×Δ_i‖² − εΣ a_i²‖Δ_i‖² ≥ 0.
+# By (8), ‖s_i − r_i‖ = 2|sin χ_i| σ with χ_i the angle between u and r_i, and for orthonormal
+# r1, r2: sin²χ1 + sin²χ2 = 2 − (u·r1)² − (u·r2)² ≥ 1, so ‖s1−r1‖² + ‖s2−r2‖² < δ² forces σ < δ/2.
+# Hence F ≥ 0 on σ ∈ [0, σ̄] for every u proves the lemma with δ = 2σ̄.
+import sympy as _sp  # noqa: E402
+
+from lkverify import bounds as _bounds  # noqa: E402
+from lkverify.items import Check as _Check  # noqa: E402
+from lkverify.results import Result as _Result  # noqa: E402
+from lkverify.status import Status as _Status  # noqa: E402
+
+_sig, _th, _ph = _sp.symbols("sigma theta phi", real=True)
+EPSILONS = (_sp.Rational(1, 2), _sp.Rational(9, 10), _sp.Rational(99, 100))
+
+
+def lemma1_F(eps, a1_=1, a2_=1, r1_=(1, 0, 0), r2_=(0, 1, 0)):
+    """F(σ, θ, φ) of the comment above (u in spherical angles)."""
+    u = _sp.Matrix([_sp.sin(_th) * _sp.cos(_ph), _sp.sin(_th) * _sp.sin(_ph), _sp.cos(_th)])
+    q0 = _sp.sqrt(1 - _sig**2)
+    terms, norms = _sp.zeros(3, 1), 0
+    for a, r in ((a1_, _sp.Matrix(r1_)), (a2_, _sp.Matrix(r2_))):
+        D = 2 * q0 * u.cross(r) + 2 * _sig * u.cross(u.cross(r))
+        terms += a * r.cross(D)
+        norms += a**2 * D.dot(D)
+    return _sp.expand(terms.dot(terms) - eps * norms)
+
+
+def _lemma1_sigma_estimate(eps, r1_=(1, 0, 0), r2_=(0, 1, 0), n=121):
+    """The first σ where min_u F(σ, u) ≤ 0 (sampled, then bisected): an estimate of σ̄."""
+    f = _sp.lambdify((_sig, _th, _ph), lemma1_F(eps, r1_=r1_, r2_=r2_), "numpy")
+    T, Ph = np.meshgrid(np.linspace(0, np.pi, n), np.linspace(0, 2 * np.pi, 2 * n))
+
+    def m(s):
+        return float(np.min(f(s, T, Ph)))
+
+    lo, hi = 0.0, 0.999
+    if m(hi) > 0:
+        return hi
+    for _ in range(50):
+        mid = (lo + hi) / 2
+        lo, hi = (mid, hi) if m(mid) > 0 else (lo, mid)
+    return lo
+
+
+def lemma1_delta(eps, *, budget_seconds=20.0):
+    """Certified δ(ε) (a1 = a2 = 1, r_i the base axes) and the sampled estimate of the largest δ."""
+    eps = _sp.Rational(eps)
+    est = _lemma1_sigma_estimate(float(eps))
+    F = lemma1_F(eps)
+    sbar = _sp.Rational(est * 0.995).limit_denominator(10**6)
+    chk = None
+    for _ in range(6):
+        box = {_sig: (0, sbar), _th: (0, _sp.pi), _ph: (0, 2 * _sp.pi)}
+        chk = _bounds.certify_positive(F, box, name=f"F ≥ 0 for σ ≤ {sbar}", budget_seconds=budget_seconds / 3)
+        if chk.status is _Status.CERTIFIED:
+            break
+        sbar = sbar * _sp.Rational(9, 10)
+    return chk, 2 * sbar, 2 * est
+
+
+def _lemma1_check(v):
+    eps_values = [v["eps"]] if v.get("eps") is not None else list(EPSILONS)
+    out = []
+    from lkverify.errors import InputError
+
+    for eps in eps_values:
+        if not (0 < eps < 1):
+            raise InputError(f"eps: Lemma 1 needs 0 < ε < 1, got eps={eps}; e.g. --set eps=0.9")
+        chk, delta, est = lemma1_delta(eps)
+        others = [2 * _lemma1_sigma_estimate(float(eps), r1_=R[:, 0], r2_=R[:, 1]) for R in _ROTATED_PAIRS]
+        status = _Status.CERTIFIED if chk.status is _Status.CERTIFIED else chk.status
+        out.append(_Result("region", f"delta(eps={eps})", status,
+                           {"certified": float(delta), "estimate_largest": est, "eps": float(eps),
+                            "estimates_other_orthonormal_pairs": others, "boxes": chk.boxes},
+                           f"(6) holds when ‖s1−r1‖² + ‖s2−r2‖² < δ² with δ = {float(delta):.6g} (certified: F ≥ 0 "
+                           f"on σ ≤ δ/2, {chk.boxes} boxes, {chk.seconds:.1f} s); sampled largest δ ≈ {est:.6g}; "
+                           f"other orthonormal r1, r2 give {', '.join(f'{x:.6g}' for x in others)} (the problem is "
+                           f"invariant under rotating the pair)"))
+    return out
+
+
+_Q = np.linalg.qr(np.random.default_rng(7).normal(size=(3, 3)))[0]
+_ROTATED_PAIRS = (np.array([[0.6, -0.8, 0], [0.8, 0.6, 0], [0, 0, 1]]), _Q)
+
+P.scalar("eps", positive=True, description="ε ∈ (0, 1) of Lemma 1 (unset: 0.5, 0.9 and 0.99)")
+
+
+class _Lemma1Constants:
+    """`lkverify constants aleksandrov2017.lemma1`: certified δ(ε) and the plot of δ(ε)."""
+
+    goals = ["default"]
+
+    def run(self, item_name, values, shown, *, budget=150.0, progress=None, goal=None):
+        from lkverify.results import Report
+
+        if progress:
+            progress(f"{item_name}: certifying δ(ε)")
+        results = tuple(_lemma1_check(values))
+        bad = [r.name for r in results if not r.status.holds]
+        verdict = "certified δ(ε)" if not bad else f"undecided: {', '.join(bad)}"
+        return Report(item_name, dict(shown), results, verdict), {"results": results}
+
+    def plot(self, extra, path, *, values=None):
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+
+        eps_grid = np.linspace(0.05, 0.99, 40)
+        est = [2 * _lemma1_sigma_estimate(e, n=61) for e in eps_grid]
+        fig, ax = plt.subplots(figsize=(6, 4))
+        ax.plot(eps_grid, est, label="largest δ (sampled estimate)")
+        pts = [(r.value["eps"], r.value["certified"]) for r in extra["results"] if r.value]
+        if pts:
+            ax.plot(*zip(*pts), "o", label="certified δ(ε)")
+        ax.set_xlabel("ε")
+        ax.set_ylabel("δ(ε)")
+        ax.set_title("Lemma 1 of paper 001 (a1 = a2 = 1)")
+        ax.grid(alpha=0.3)
+        ax.legend()
+        fig.tight_layout()
+        fig.savefig(path, dpi=120)
+        plt.close(fig)
+
+
+lemma1 = _Check("lemma1", parameters=P, checks=[_lemma1_check], relevant=("eps",),
+                title="Lemma 1: ‖a1 r1×s1 + a2 r2×s2‖² ≥ ε(…) for ‖s−r‖ < δ(ε); certified δ(ε)")
+lemma1.constants = _Lemma1Constants()

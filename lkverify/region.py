@@ -1,0 +1,502 @@
+"""Parameters, regions and decay envelopes from the final inequalities of a proof.
+
+A proof ends with three inequalities in a few scalar quantities x = (x_1, …, x_n),
+all ≥ 0 (‖ω(t)‖, ‖s(t) − r‖, (∫ ‖s(ξ) − r‖³ dξ)^{1/3}, …), valid on a region
+0 ≤ x_i ≤ h_i:
+
+    L(x) ≤ V ≤ U(x),        V̇ ≤ W(x).
+
+A :class:`DecayModel` holds them.  :func:`certify_decay` proves, on the region,
+
+* ``L(x) ≥ l_v x_v²`` for every bounded output quantity x_v (so x_v ≤ √(V/l_v)),
+* ``W(x) + c̃·U(x)^p ≤ 0`` (so V̇ ≤ −c̃ V^p),
+
+and bounds the initial value V(t0) ≤ C0‖χ‖².  The region is a box; the
+inequalities are tight at the origin, where no interval method can prove them,
+so they are proved on the *outer faces* of the box and carried inside by a
+scaling argument whose hypotheses are checked exactly on the monomials:
+with k = 2p, ``G(ρx)/ρ^k`` is nondecreasing in ρ ∈ (0, 1] when every monomial of
+W with a negative coefficient has degree ≤ k and every positive one degree ≥ k,
+and every monomial of U with a positive coefficient has degree ≥ 2 (negative
+ones ≤ 2); ``(L − l x_v²)(ρx)/ρ²`` is affine in ρ when L has only degrees 2 and
+3, so it is proved at ρ → 0 (the quadratic part, on the faces) and at ρ = 1.
+
+From V̇ ≤ −c̃V^p the envelope follows (:class:`Envelope`): for p > 1
+``V(t) ≤ V0 (1 + (p−1) c̃ V0^{p−1} (t − t0))^{−1/(p−1)}``, for p = 1
+``V(t) ≤ V0 e^{−c̃(t − t0)}``, and with a factor h(t) (V̇ ≤ −c̃ h V^p) the time
+t − t0 is replaced by ∫_{t0}^t h.  Since the right-hand side increases with V0,
+V0 ≤ C0‖χ‖² gives, for every output quantity,
+
+    x_v(t) ≤ d_v ‖χ‖ (1 + κ ‖χ‖^{2(p−1)} (t − t0))^{−1/(2(p−1))},   d_v = √(C0/l_v),
+
+valid while the solution stays in the region, which it does for
+‖χ‖ < δ̃ = min_v h_v / max(d_v, 1) (continuity).  Every number is computed with
+arb and rounded outward; the results carry the status ``certified`` only when
+every step was proved.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+from collections.abc import Callable, Mapping, Sequence
+
+import numpy as np
+import sympy
+from flint import arb
+
+from . import bounds
+from .results import Result
+from .status import Status
+
+__all__ = ["DecayModel", "Envelope", "DecayCertificate", "certify_decay", "estimate_decay", "search_parameters",
+           "tighten"]
+
+
+@dataclasses.dataclass(frozen=True)
+class DecayModel:
+    """The final inequalities of a proof, in scalar quantities.
+
+    Parameters
+    ----------
+    name : str
+    variables : tuple of Symbol
+        The scalar quantities, all ≥ 0.
+    region : dict
+        variable → its upper bound h_i on the region (an expression in the parameters).
+    lower, upper, vdot : sympy expressions
+        L, U and W (polynomials in the variables once the parameters have values).
+    p : Rational
+        The target V̇ ≤ −c̃ V^p.
+    point_variables : tuple of Symbol
+        Quantities bounded jointly at t0 by the history norm: Σ x_i² ≤ ‖χ‖² (at most two).
+    history_variables : dict
+        variable → κ with x ≤ κ‖χ‖ at t0 (e.g. (∫‖s−r‖³)^{1/3} ≤ τ^{1/3}‖χ‖).
+    outputs : dict
+        result name → variable whose decay is bounded (``{"d1": e, "d2": w}``).
+    rate_name : str
+        Name of the rate constant (``"d3"``).
+    derivation : str
+        How L, U and W follow from the exact V̇ (shown in reports).
+    """
+
+    name: str
+    variables: tuple
+    region: dict
+    lower: sympy.Expr
+    upper: sympy.Expr
+    vdot: sympy.Expr
+    p: sympy.Rational
+    point_variables: tuple
+    history_variables: dict
+    outputs: dict
+    rate_name: str = "d3"
+    derivation: str = ""
+
+    def at(self, values: Mapping) -> "DecayModel":
+        """The model with parameter values substituted (exact rationals recommended)."""
+        sub = dict(values)
+        return dataclasses.replace(
+            self, region={v: sympy.nsimplify(sympy.sympify(h).xreplace(sub)) for v, h in self.region.items()},
+            lower=sympy.expand(self.lower.xreplace(sub)), upper=sympy.expand(self.upper.xreplace(sub)),
+            vdot=sympy.expand(self.vdot.xreplace(sub)),
+            history_variables={v: sympy.sympify(k).xreplace(sub) for v, k in self.history_variables.items()})
+
+
+@dataclasses.dataclass(frozen=True)
+class Envelope:
+    """x(t) ≤ d‖χ‖ (1 + κ‖χ‖^{2(p−1)} H(t))^{−1/(2(p−1))}, or d‖χ‖ e^{−κH(t)/2} for p = 1; H(t) = t − t0 or ∫h."""
+
+    name: str
+    d: float
+    kappa: float
+    p: float
+
+    def __call__(self, t, chi):
+        t = np.asarray(t, dtype=float)
+        if self.p == 1:
+            return self.d * chi * np.exp(-0.5 * self.kappa * t)
+        return self.d * chi * (1 + self.kappa * chi ** (2 * (self.p - 1)) * t) ** (-1 / (2 * (self.p - 1)))
+
+    def text(self) -> str:
+        if self.p == 1:
+            return f"{self.name}(t) ≤ {self.d:.4g}‖χ‖ exp(−{self.kappa / 2:.4g}(t − t0))"
+        if self.p == 1.5:
+            return f"{self.name}(t) ≤ {self.d:.4g}‖χ‖ (1 + {self.kappa:.4g}‖χ‖(t − t0))^(−1)"
+        return (f"{self.name}(t) ≤ {self.d:.4g}‖χ‖ (1 + {self.kappa:.4g}‖χ‖^{2 * (self.p - 1):g}(t − t0))"
+                f"^(−{1 / (2 * (self.p - 1)):.4g})")
+
+
+@dataclasses.dataclass(frozen=True)
+class DecayCertificate:
+    """What :func:`certify_decay` proved (or failed to)."""
+
+    status: Status
+    constants: dict  # name → float (upper bounds for d_v, C0; lower bounds for l_v, c̃, the rate, δ̃)
+    envelopes: tuple
+    checks: tuple  # bounds.CheckResult / SupResult of every step
+    detail: str
+    seconds: float
+    counterexamples: tuple = ()  # (what, point) for refuted face checks: what = "rate" or an output variable
+
+    def results(self, paper: Mapping[str, float] | None = None, names: Mapping[str, str] | None = None) -> list:
+        """Results for the report: every constant, compared with the paper's value if given."""
+        paper = dict(paper or {})
+        out = []
+        for key, value in self.constants.items():
+            pv = paper.get(key)
+            better = None
+            if pv is not None:
+                better = value <= pv if key.startswith("d") and key != "delta_tilde" and key != "d3" else value >= pv
+            detail = (names or {}).get(key, "")
+            if pv is not None:
+                detail += (f" paper: {pv:g}; lkverify: {value:.4g} "
+                           f"({'equal or better' if better else 'worse'} than the paper)")
+            out.append(Result("constant", key, self.status, {"value": value, "paper": pv, "equal_or_better": better},
+                              detail.strip()))
+        return out
+
+
+def _q(x) -> sympy.Rational:
+    """An exact rational: Rationals and ints as they are, floats by their exact binary value."""
+    if isinstance(x, sympy.Rational):
+        return x
+    if isinstance(x, (int, float)):
+        return sympy.Rational(x)
+    x = sympy.sympify(x)
+    if x.is_Rational:
+        return x
+    if x.is_Float:
+        return sympy.Rational(x)
+    raise TypeError(f"expected a rational number, got {x}")
+
+
+def _monomials(expr, variables):
+    poly = sympy.Poly(sympy.expand(expr), *variables)
+    return [(sum(m), c) for m, c in poly.terms()]
+
+
+def _check_structure(model: DecayModel) -> list[str]:
+    """The exact hypotheses of the scaling argument (empty list when they hold)."""
+    problems = []
+    k = 2 * model.p
+    for deg, c in _monomials(model.vdot, model.variables):
+        if not c.is_number:
+            problems.append(f"W has a non-numeric coefficient {c}")
+        elif c < 0 and deg > k:
+            problems.append(f"W has a negative term of degree {deg} > {k}")
+        elif c > 0 and deg < k:
+            problems.append(f"W has a positive term of degree {deg} < {k} (coefficient {c}); the decay cannot be proved")
+    for deg, c in _monomials(model.upper, model.variables):
+        if c > 0 and deg < 2 or c < 0 and deg > 2:
+            problems.append(f"U has a term of degree {deg} with coefficient {c}: not of the supported shape")
+        if c < 0:
+            problems.append(f"U has a negative coefficient {c}; U ≥ 0 cannot be read off")
+    for deg, c in _monomials(model.lower, model.variables):
+        if deg not in (2, 3):
+            problems.append(f"L has a term of degree {deg}; only degrees 2 and 3 are supported")
+    return problems
+
+
+def _faces(model: DecayModel):
+    """The outer faces of the region box: (variable, its upper bound, the box of the others)."""
+    for v in model.variables:
+        yield v, model.region[v], {u: (sympy.S.Zero, model.region[u]) for u in model.variables if u != v}
+
+
+def _down(x) -> float:
+    return float(arb(x).lower()) if isinstance(x, arb) else x
+
+
+def certify_decay(model: DecayModel, *, c_tilde, lower_coefficients: Mapping, delta_tilde,
+                  budget_seconds: float = 60.0, progress: Callable[[str], None] | None = None) -> DecayCertificate:
+    """Prove the decay envelope of ``model`` (parameters already substituted) with candidate constants.
+
+    Parameters
+    ----------
+    model : DecayModel
+        With numeric coefficients (see :meth:`DecayModel.at`).
+    c_tilde : rational
+        Candidate rate in V̇ ≤ −c̃ V^p.
+    lower_coefficients : mapping
+        output variable → candidate l_v in L ≥ l_v x_v².
+    delta_tilde : rational
+        Candidate admissible history norm; the result may lower it, never raise it.
+    """
+    say = progress or (lambda msg: None)
+    start = time.monotonic()
+    problems = _check_structure(model)
+    if problems:
+        return DecayCertificate(Status.FAILED, {}, (), (), "the model is not of the supported shape: "
+                                + "; ".join(problems), time.monotonic() - start)
+    checks = []
+    refuted = []
+    each = budget_seconds / (3 * len(model.variables) + 2)
+    ct = _q(c_tilde)
+    G = model.vdot + ct * sympy.Pow(model.upper, model.p)
+    quad = sum((c * sympy.Mul(*[v ** e for v, e in zip(model.variables, m)])
+                for m, c in sympy.Poly(model.lower, *model.variables).terms() if sum(m) == 2), sympy.S.Zero)
+    for v, hi, face in _faces(model):
+        say(f"{model.name}: V̇ ≤ −c̃V^p on the face {v} = {hi}")
+        chk = bounds.certify_nonpositive(G.subs(v, hi), face, name=f"W + c̃U^p ≤ 0 on {v} = {hi}",
+                                         budget_seconds=each)
+        checks.append(chk)
+        if chk.status is Status.FAILED and chk.point:
+            refuted.append(("rate", {**{str(v): float(hi)}, **chk.point}))
+        for out, lv in lower_coefficients.items():
+            lv = _q(lv)
+            say(f"{model.name}: L ≥ {lv}·{out}² on the face {v} = {hi}")
+            chk = bounds.certify_positive((model.lower - lv * out ** 2).subs(v, hi), face,
+                                          name=f"L − l·{out}² > 0 on {v} = {hi}", budget_seconds=each)
+            checks.append(chk)
+            if chk.status is Status.FAILED and chk.point:
+                refuted.append((out, {**{str(v): float(hi)}, **chk.point}))
+            pass
+    # ρ → 0: the quadratic part Q − l·x_v² must be ≥ 0 on the orthant; its matrix is checked PSD exactly.
+    from .conditions import matrix_positive_definite
+
+    for out, lv in lower_coefficients.items():
+        lv = _q(lv)
+        H = sympy.hessian(sympy.expand(quad - lv * out ** 2), model.variables) / 2
+        say(f"{model.name}: quadratic part of L − {lv}·{out}² is positive semidefinite")
+        checks.append(matrix_positive_definite(H, name=f"Q − l·{out}²", semidefinite=True))
+    # V(t0) ≤ C0 ‖χ‖²: U increases in every variable and U(χy)/χ² in χ; the sup is on the
+    # sphere Σ x_i² = δ̃² of the point variables, the history variables at their largest.
+    dt = _q(delta_tilde)
+    theta = sympy.Symbol("theta_", real=True)
+    pts = model.point_variables
+    if len(pts) == 1:
+        sub, box = {pts[0]: dt}, {}
+    elif len(pts) == 2:
+        sub, box = {pts[0]: dt * sympy.cos(theta), pts[1]: dt * sympy.sin(theta)}, {theta: (0, sympy.pi / 2)}
+    else:
+        raise ValueError("at most two point variables are supported")
+    ys = {}
+    for hv, kappa in model.history_variables.items():
+        y = sympy.Symbol(f"y_{hv}", nonnegative=True)
+        sub[hv] = dt * y
+        box[y] = (0, sympy.nsimplify(kappa))
+        ys[hv] = y
+    say(f"{model.name}: C0 = sup U/‖χ‖² at ‖χ‖ = δ̃")
+    c0res = bounds.sup_bound(sympy.expand(model.upper.xreplace(sub) / dt ** 2), box, rel_gap=1e-3,
+                             budget_seconds=each)
+    checks.append(c0res)
+    ok = all(getattr(c, "status", Status.UNDECIDED).is_proof for c in checks)
+    failed = [c for c in checks if getattr(c, "status", None) is Status.FAILED]
+    C0 = arb(c0res.certified) if c0res.certified is not None and math.isfinite(c0res.certified) else None
+    constants: dict = {}
+    envelopes = []
+    if C0 is not None:
+        p = model.p
+        ct_a = arb(str(sympy.Rational(ct).p)) / arb(str(sympy.Rational(ct).q))
+        kappa = (arb(str(p - 1)) * ct_a * C0 ** (arb(str(p - 1)))) if p != 1 else ct_a
+        names = {v: k for k, v in model.outputs.items()}
+        delta = arb(str(sympy.Rational(dt).p)) / arb(str(sympy.Rational(dt).q))
+        for out, lv in lower_coefficients.items():
+            lv = _q(lv)
+            d = (C0 / (arb(lv.p) / arb(lv.q))).sqrt()
+            name = names[out]
+            constants[name] = float(d.upper())
+            h = sympy.Rational(model.region[out])
+            cap = (arb(h.p) / arb(h.q)) / (d if d.upper() >= 1 else arb(1))
+            delta = arb(min(float(delta.lower()), float(cap.lower())))
+            envelopes.append(Envelope(name, float(d.upper()), float(kappa.lower()), float(p)))
+        constants[model.rate_name] = float(kappa.lower()) if p != sympy.Rational(3, 2) else float(kappa.lower())
+        constants["delta_tilde"] = float(delta.lower())
+        constants["C0"] = float(C0.upper())
+        constants["c_tilde"] = float(ct)
+        for out, lv in lower_coefficients.items():
+            constants[f"l_{out}"] = float(_q(lv))
+    status = Status.CERTIFIED if ok and C0 is not None else (Status.FAILED if failed else Status.UNDECIDED)
+    detail = ("every face inequality and C0 proved with arb" if status is Status.CERTIFIED else
+              "; ".join(f"{getattr(c, 'name', 'C0')}: {c.status.value}" for c in checks
+                        if not getattr(c, "status", Status.UNDECIDED).is_proof))
+    return DecayCertificate(status, constants, tuple(envelopes), tuple(checks), detail, time.monotonic() - start,
+                            tuple(refuted))
+
+
+def tighten(model: DecayModel, c_tilde, lower_coefficients: Mapping, counterexamples, *, factor=sympy.Rational(98, 100)):
+    """Lower the candidate constants below their values at refuted points (counterexample-guided).
+
+    Returns None when a refuted point has W ≥ 0: no rate works for these parameters.
+    """
+    ct = _q(c_tilde)
+    ls = {k: _q(v) for k, v in lower_coefficients.items()}
+    for what, point in counterexamples:
+        sub = {v: _q(point[str(v)]) for v in model.variables}
+        if what == "rate":
+            U = model.upper.xreplace(sub)
+            if model.vdot.xreplace(sub) >= 0:
+                return None  # W ≥ 0 at a point of the region: these parameters cannot work
+            if U > 0:
+                ct = min(ct, sympy.Rational(float(-model.vdot.xreplace(sub) / U ** model.p)).limit_denominator(10**8)
+                         * factor)
+        else:
+            x = sub[what]
+            if x > 0:
+                ls[what] = min(ls[what], sympy.Rational(float(model.lower.xreplace(sub) / x**2)).limit_denominator(10**8)
+                               * factor)
+    return ct, ls
+
+
+# -- estimates and the parameter search ---------------------------------------------------------------
+class _FastEstimator:
+    """Sampled constants of a model family ``build(params)``, compiled once (NumPy on the box faces).
+
+    By the scaling argument the infimum of −W/U^p and of L/x_v² over the box is
+    attained on the outer faces (or, for L, by the quadratic part on the faces),
+    so only the faces are sampled.
+    """
+
+    def __init__(self, build: Callable[[Mapping], DecayModel], names: Sequence[str], grid: int = 41):
+        self.names = list(names)
+        self.syms = [sympy.Symbol(f"par_{n}", real=True) for n in self.names]
+        model = build(dict(zip(self.names, self.syms)))
+        self.model = model
+        vs = model.variables
+        args = list(vs) + self.syms
+        quad = sum((c * sympy.Mul(*[v ** e for v, e in zip(vs, m)])
+                    for m, c in sympy.Poly(sympy.expand(model.lower), *vs).terms() if sum(m) == 2), sympy.S.Zero)
+        self.f = {k: sympy.lambdify(args, e, "numpy") for k, e in
+                  (("L", model.lower), ("U", model.upper), ("W", model.vdot), ("Q", quad))}
+        self.h = [sympy.lambdify(self.syms, model.region[v], "numpy") for v in vs]
+        self.kappa = {hv: sympy.lambdify(self.syms, k, "numpy") for hv, k in model.history_variables.items()}
+        # geometric near 0: the scaling structure makes the small scales decisive
+        self.grid = np.concatenate([[0.0], np.geomspace(1e-7, 1.0, grid - 1)])
+        self.extra: list[dict] = []  # points (variable name → value) added after refuted certificates
+        self.p = float(model.p)
+
+    def _refine(self, fn, his, k, start, values):
+        """Local minimisation of fn over the face x_k = h_k from a start point (bounded)."""
+        import warnings
+
+        from scipy.optimize import minimize
+
+        n = len(his)
+        free = [i for i in range(n) if i != k]
+
+        def g(z):
+            x = [0.0] * n
+            x[k] = his[k]
+            for i, zi in zip(free, z):
+                x[i] = zi
+            return float(fn(x))
+
+        with warnings.catch_warnings(), np.errstate(all="ignore"):
+            warnings.simplefilter("ignore")
+            res = minimize(g, [start[i] for i in free], method="L-BFGS-B", bounds=[(0.0, his[i]) for i in free])
+            best = min(float(res.fun), g([start[i] for i in free]))
+        return best if np.isfinite(best) else g([start[i] for i in free])
+
+    def __call__(self, values: Sequence[float], *, refine: bool = False) -> dict | None:
+        model, vs, p = self.model, self.model.variables, self.p
+        his = [float(h(*values)) for h in self.h]
+        if min(his) <= 0:
+            return None
+        faces = []
+        n = len(vs)
+        for k in range(n):
+            axes = [self.grid * his[i] for i in range(n) if i != k]
+            mesh = np.meshgrid(*axes, indexing="ij")
+            pts, it = [], iter(mesh)
+            for i in range(n):
+                pts.append(np.full(mesh[0].shape, his[k]) if i == k else next(it))
+            faces.append([x.ravel() for x in pts])
+        X = [np.concatenate([f[i] for f in faces]) for i in range(n)]
+        if self.extra:  # counterexample points of earlier attempts, kept inside the region box
+            X = [np.concatenate([X[i], np.clip([pt[str(vs[i])] for pt in self.extra], 0, his[i])]) for i in range(n)]
+        L, U, W, Q = (np.broadcast_to(self.f[k](*X, *values), X[0].shape) for k in ("L", "U", "W", "Q"))
+        if np.any(W >= 0) or np.any(U <= 0):
+            return None
+        ratio = -W / U ** p
+        ct = float(np.min(ratio))
+        ls = {}
+        for out in model.outputs.values():
+            x = X[vs.index(out)]
+            with np.errstate(divide="ignore", invalid="ignore"):
+                ls[out] = float(min(np.min(np.where(x > 0, L / x**2, np.inf)), np.min(np.where(x > 0, Q / x**2, np.inf))))
+            if not ls[out] > 0:
+                return None
+        if refine:
+            sizes = [len(self.grid) ** (n - 1)] * n
+            face_of = np.concatenate([np.repeat(np.arange(n), sizes), np.full(len(self.extra), -1)])
+            fW, fU, fL, fQ = self.f["W"], self.f["U"], self.f["L"], self.f["Q"]
+            order = np.argsort(ratio)
+            picks = [i for k in range(n) for i in order[face_of[order] == k][:6]]
+            for idx in picks:
+                k, start = int(face_of[idx]), [float(Xi[idx]) for Xi in X]
+                ct = min(ct, self._refine(lambda x: -fW(*x, *values) / fU(*x, *values) ** p, his, k, start, values))
+            for out in model.outputs.values():
+                o = vs.index(out)
+                for fn in (fL, fQ):
+                    vals = np.broadcast_to(fn(*X, *values), X[0].shape)
+                    with np.errstate(divide="ignore", invalid="ignore"):
+                        r = np.where(X[o] > 0, vals / X[o] ** 2, np.inf)
+                    order = np.argsort(r)
+                    for idx in [i for k in range(n) for i in order[face_of[order] == k][:6]]:
+                        k, start = int(face_of[idx]), [float(Xi[idx]) for Xi in X]
+                        if start[o] <= 0:
+                            continue
+                        ls[out] = min(ls[out], self._refine(
+                            lambda x, fn=fn, o=o: fn(*x, *values) / max(x[o], 1e-300) ** 2, his, k, start, values))
+            if ct <= 0 or min(ls.values()) <= 0:
+                return None
+        th = np.linspace(0, np.pi / 2, 61)
+        pts = model.point_variables
+        dt = min(his)
+        names = {v: k for k, v in model.outputs.items()}
+        for _ in range(30):
+            args = {v: np.zeros_like(th) for v in vs}
+            if len(pts) == 1:
+                args[pts[0]] = np.full_like(th, dt)
+            else:
+                args[pts[0]], args[pts[1]] = dt * np.cos(th), dt * np.sin(th)
+            for hv, kf in self.kappa.items():
+                args[hv] = np.full_like(th, dt * float(kf(*values)))
+            C0 = float(np.max(self.f["U"](*[args[v] for v in vs], *values))) / dt**2
+            ds = {out: math.sqrt(C0 / l) for out, l in ls.items()}
+            new = min(his[vs.index(out)] / max(d, 1.0) for out, d in ds.items())
+            if abs(new - dt) <= 1e-12 * dt:
+                break
+            dt = new
+        rate = (p - 1) * ct * C0 ** (p - 1) if p != 1 else ct
+        out = {names[v]: d for v, d in ds.items()}
+        out.update({model.rate_name: rate, "delta_tilde": dt, "c_tilde": ct, "C0": C0})
+        out.update({f"l_{v}": l for v, l in ls.items()})
+        return out
+
+
+def estimate_decay(model: DecayModel, *, grid: int = 41, refine: bool = True) -> dict | None:
+    """Sampled (estimated) constants of a numeric model: l_v, c̃, C0, d_v, rate, δ̃; None if infeasible.
+
+    With ``refine`` the face minima are polished by local optimisation from the best samples.
+    """
+    if _check_structure(model):
+        return None
+    return _FastEstimator(lambda _: model, [], grid)([], refine=refine)
+
+
+def search_parameters(build: Callable[[Mapping], DecayModel], bounds_: Mapping[str, tuple], *,
+                      objective: Callable[[dict], float], seed: int = 0, maxiter: int = 250,
+                      popsize: int = 20, grid: int = 31, extra_points: Sequence[dict] = ()) -> tuple[dict, dict | None]:
+    """Estimated best free parameters: differential evolution over ``bounds_`` of ``objective(estimate)``.
+
+    ``build(params)`` returns the model for a parameter dict (it is called once with
+    symbols and compiled).  The outcome is an estimate (a search, not a proof);
+    certify it with :func:`certify_decay`.
+    """
+    from scipy.optimize import differential_evolution
+
+    names = list(bounds_)
+    est = _FastEstimator(build, names, grid)
+    est.extra = list(extra_points)
+
+    def f(x):
+        r = est(list(x))
+        return 1e6 if r is None else objective(r)
+
+    res = differential_evolution(f, [bounds_[n] for n in names], seed=seed, maxiter=maxiter, popsize=popsize,
+                                 tol=1e-12, polish=False)
+    params = dict(zip(names, res.x))
+    return params, est(list(res.x))
