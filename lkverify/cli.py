@@ -92,12 +92,7 @@ def main(argv=None) -> int:
             items = find_items(args.item)
             say = _progress(not args.json and sys.stderr.isatty())
             reports = [item.run(values, budget=args.budget, progress=say) for item in items]
-            if args.json:
-                out = reports[0].to_json() if len(reports) == 1 else [r.to_json() for r in reports]
-                print(json.dumps(out, indent=2, ensure_ascii=False))
-            else:
-                print("\n\n".join(r.as_text() for r in reports))
-            return max(r.exit_code for r in reports)
+            return _emit(reports, json_out=args.json)
         if args.command == "simulate":
             return _simulate(args)
         if args.command == "constants":
@@ -106,6 +101,16 @@ def main(argv=None) -> int:
         print(f"lkverify: error: {exc}", file=sys.stderr)
         return 2
     return 0  # pragma: no cover
+
+
+def _emit(reports, *, json_out: bool) -> int:
+    """Print reports (one JSON object, a list of them, or text tables); the worst exit code."""
+    if json_out:
+        out = reports[0].to_json() if len(reports) == 1 else [r.to_json() for r in reports]
+        print(json.dumps(out, indent=2, ensure_ascii=False))
+    else:
+        print("\n\n".join(r.as_text() for r in reports))
+    return max(r.exit_code for r in reports)
 
 
 def _bar(enabled: bool, label: str):
@@ -155,12 +160,7 @@ def _simulate(args) -> int:
             say(f"figure written to {path}")
             if not args.json:
                 print(f"figure: {path}")
-    if args.json:
-        out = reports[0].to_json() if len(reports) == 1 else [r.to_json() for r in reports]
-        print(json.dumps(out, indent=2, ensure_ascii=False))
-    else:
-        print("\n\n".join(r.as_text() for r in reports))
-    return max(r.exit_code for r in reports)
+    return _emit(reports, json_out=args.json)
 
 
 def _constants(args) -> int:
@@ -183,12 +183,7 @@ def _constants(args) -> int:
             item.constants.plot(extra, args.plot, values=item.parameters.resolve(values, use_defaults=True))
             if not args.json:
                 print(f"figure: {args.plot}")
-    if args.json:
-        out = reports[0].to_json() if len(reports) == 1 else [r.to_json() for r in reports]
-        print(json.dumps(out, indent=2, ensure_ascii=False))
-    else:
-        print("\n\n".join(r.as_text() for r in reports))
-    return max(r.exit_code for r in reports)
+    return _emit(reports, json_out=args.json)
 
 
 def _report(*, json_out: bool) -> int:

@@ -30,7 +30,7 @@ import dataclasses
 import sympy
 from sympy.core.function import AppliedUndef
 
-from .functional import Functional
+from .functional import Functional, outer_integrals
 from .system import System
 from .symbols import t
 
@@ -100,22 +100,6 @@ class DerivativeResult:
         return "\n".join(lines)
 
 
-def _outer_integrals(expr) -> list[sympy.Integral]:
-    """Integrals in ``expr`` that are not inside another integral, depending on t."""
-    found = []
-
-    def walk(e):
-        if isinstance(e, sympy.Integral):
-            if t in e.free_symbols:
-                found.append(e)
-            return
-        for a in e.args:
-            walk(a)
-
-    walk(expr)
-    return list(dict.fromkeys(found))
-
-
 def derivative_along(functional: Functional, system: System) -> DerivativeResult:
     """The exact derivative of ``functional`` along the solutions of ``system``.
 
@@ -151,7 +135,7 @@ def _term_blocks(term, system: System, funcs) -> list[Block]:
     P = term.expr
     src_text, src_latex = term.text, term.latex
     # 1. integrals that depend on t → placeholders
-    integrals = _outer_integrals(P)
+    integrals = [I for I in outer_integrals(P) if t in I.free_symbols]  # those that depend on t
     Y = [sympy.Dummy(f"I{k}") for k in range(len(integrals))]
     Pt = P.xreplace(dict(zip(integrals, Y)))
     # 2. state values: now (arg == t) and delayed (arg depends on t otherwise)

@@ -23,7 +23,22 @@ import sympy
 from .symbols import t, xi, zeta
 from .terms import Term
 
-__all__ = ["Functional", "window_integral", "memory_integral", "tail_integral"]
+__all__ = ["Functional", "window_integral", "memory_integral", "tail_integral", "outer_integrals"]
+
+
+def outer_integrals(expr) -> list:
+    """The integrals of ``expr`` that are not inside another integral, without repeats, in order."""
+    found = []
+
+    def walk(x):
+        if isinstance(x, sympy.Integral):
+            found.append(x)
+            return
+        for a in x.args:
+            walk(a)
+
+    walk(expr)
+    return list(dict.fromkeys(found))
 
 
 def _integrate(integrand, var, lower, upper):

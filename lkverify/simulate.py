@@ -41,6 +41,7 @@ from sympy.core.function import AppliedUndef
 
 from .dde import DDESolution, Outcome, solve_dde
 from .errors import InputError
+from .functional import outer_integrals as _outer_integrals
 from .parameters import apply_substitution
 from .symbols import t
 from .system import System
@@ -124,20 +125,6 @@ class CompiledSystem:
             if a.kind == "window":
                 y[self.n_states + k] = float(np.ravel(past.integrate(g, t_now - a.lag, t_now))[0])
         return y
-
-
-def _outer_integrals(e):
-    found = []
-
-    def walk(x):
-        if isinstance(x, sympy.Integral):
-            found.append(x)
-            return
-        for a in x.args:
-            walk(a)
-
-    walk(e)
-    return found
 
 
 def _numeric(x, what: str) -> float:

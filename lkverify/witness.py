@@ -27,6 +27,7 @@ import scipy.integrate
 import sympy
 from sympy.core.function import AppliedUndef
 
+from .functional import outer_integrals
 from .parameters import Kind, Parameters, apply_substitution
 from .states import Frame, Vector
 from .symbols import t
@@ -165,20 +166,6 @@ def evaluate_many(exprs, w: Witness) -> list[float]:
     return [float(v) for v in fn(float(w.t_eval))]
 
 
-def _outer(e, cls):
-    found = []
-
-    def walk(x):
-        if isinstance(x, cls):
-            found.append(x)
-            return
-        for a in x.args:
-            walk(a)
-
-    walk(e)
-    return found
-
-
 def _compile(exprs, bound: tuple, histories: dict):
     """A callable of the bound variables' values returning the values of ``exprs``.
 
@@ -186,7 +173,7 @@ def _compile(exprs, bound: tuple, histories: dict):
     computed by adaptive quadrature of their compiled integrands; state values
     ``x_i(arg)`` become placeholders computed from the histories.
     """
-    ints = list(dict.fromkeys(i for e in exprs for i in _outer(e, sympy.Integral)))
+    ints = list(dict.fromkeys(i for e in exprs for i in outer_integrals(e)))
     holders = [sympy.Dummy(f"q{k}") for k in range(len(ints))]
     bodies = [e.xreplace(dict(zip(ints, holders))) for e in exprs]
     apps = list(dict.fromkeys(a for b in bodies for a in b.atoms(AppliedUndef) if a.func in histories))
