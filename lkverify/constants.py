@@ -140,7 +140,7 @@ class ConstantsJob:
         build = self.model(values, consts)
         extra_points: list = []
         cert = None
-        for round_ in range(3):  # search, certify; a refuted point joins the samples of the next search
+        for round_ in range(5):  # search, certify; a refuted point joins the samples of the next search
             say(f"{item_name}: searching the free parameters {', '.join(self.free)} (estimated)")
             params, est = search_parameters(build, self.free, objective=objective, seed=seed + round_,
                                             extra_points=extra_points)
@@ -148,8 +148,10 @@ class ConstantsJob:
                 break
             params = {k: sympy.Rational(v).limit_denominator(10**4) for k, v in params.items()}
             model = build(params)
-            est = estimate_decay(model, grid=31)
+            found: list = []
+            est = estimate_decay(model, grid=31, violations=found)
             if est is None:
+                extra_points += found  # the search's samples missed these: show them next round
                 continue
             ct = sympy.Rational(est["c_tilde"]).limit_denominator(10**6) * sympy.Rational(99, 100)
             ls = {v: sympy.Rational(est[f"l_{v}"]).limit_denominator(10**6) * sympy.Rational(99, 100)

@@ -365,6 +365,7 @@ class _FastEstimator:
         # geometric near 0: the scaling structure makes the small scales decisive
         self.grid = np.concatenate([[0.0], np.geomspace(1e-7, 1.0, grid - 1)])
         self.extra: list[dict] = []  # points (variable name → value) added after refuted certificates
+        self.violations: list[dict] = []  # points where the refinement found W ≥ 0
         self.p = float(model.p)
 
     def _refine(self, fn, his, k, start, values):
@@ -386,8 +387,16 @@ class _FastEstimator:
         with warnings.catch_warnings(), np.errstate(all="ignore"):
             warnings.simplefilter("ignore")
             res = minimize(g, [start[i] for i in free], method="L-BFGS-B", bounds=[(0.0, his[i]) for i in free])
-            best = min(float(res.fun), g([start[i] for i in free]))
-        return best if np.isfinite(best) else g([start[i] for i in free])
+            z0 = [start[i] for i in free]
+            best, zb = (float(res.fun), list(res.x)) if float(res.fun) < g(z0) else (g(z0), z0)
+        if not np.isfinite(best):
+            best, zb = g(z0), z0
+        point = [0.0] * n
+        point[k] = his[k]
+        for i, zi in zip(free, zb):
+            point[i] = float(zi)
+        self.last_point = point
+        return best
 
     def __call__(self, values: Sequence[float], *, refine: bool = False) -> dict | None:
         model, vs, p = self.model, self.model.variables, self.p
@@ -426,7 +435,10 @@ class _FastEstimator:
             picks = [i for k in range(n) for i in order[face_of[order] == k][:6]]
             for idx in picks:
                 k, start = int(face_of[idx]), [float(Xi[idx]) for Xi in X]
-                ct = min(ct, self._refine(lambda x: -fW(*x, *values) / fU(*x, *values) ** p, his, k, start, values))
+                val = self._refine(lambda x: -fW(*x, *values) / fU(*x, *values) ** p, his, k, start, values)
+                if val <= 0:
+                    self.violations.append({str(v): x for v, x in zip(vs, self.last_point)})
+                ct = min(ct, val)
             for out in model.outputs.values():
                 o = vs.index(out)
                 for fn in (fL, fQ):
@@ -467,14 +479,20 @@ class _FastEstimator:
         return out
 
 
-def estimate_decay(model: DecayModel, *, grid: int = 41, refine: bool = True) -> dict | None:
+def estimate_decay(model: DecayModel, *, grid: int = 41, refine: bool = True,
+                   violations: list | None = None) -> dict | None:
     """Sampled (estimated) constants of a numeric model: l_v, c̃, C0, d_v, rate, δ̃; None if infeasible.
 
-    With ``refine`` the face minima are polished by local optimisation from the best samples.
+    With ``refine`` the face minima are polished by local optimisation from the best samples;
+    points where W ≥ 0 is found are appended to ``violations``.
     """
     if _check_structure(model):
         return None
-    return _FastEstimator(lambda _: model, [], grid)([], refine=refine)
+    est = _FastEstimator(lambda _: model, [], grid)
+    out = est([], refine=refine)
+    if violations is not None:
+        violations += est.violations
+    return out
 
 
 def search_parameters(build: Callable[[Mapping], DecayModel], bounds_: Mapping[str, tuple], *,

@@ -326,8 +326,8 @@ def _objective_paper(est):
 
 
 def _objective_region(est):
-    """Largest δ̃, whatever the other constants."""
-    return -est["delta_tilde"]
+    """Largest δ̃, whatever the other constants (a margin on c̃ keeps V̇ < 0 away from the sampling's blind spots)."""
+    return -est["delta_tilde"] + 10 * max(0.0, 0.02 - est["c_tilde"])
 
 
 def _printed_bound_refuted(v):
