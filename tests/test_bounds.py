@@ -279,7 +279,7 @@ def test_best_constant_cross_squared_over_difference_squared_is_one(cap):
     tmpl = (s - R_DIR).dot(s - R_DIR)                   # ‖s−r‖², vanishes at s = r
     res = best_constant(lhs, tmpl, cap.region, name="c_cross", ratio=1 - tmpl / 4)
     assert res.status is Status.CERTIFIED
-    assert 1.0 <= res.certified <= 1.01                 # sup = 1, approached at s → r
+    assert res.certified >= 1.0 and res.certified <= 1.01                # sup = 1, approached at s → r
     assert res.maximiser["rho"] < 1e-3
     out = json.loads(json.dumps(res.to_json()))
     assert out["status"] == "certified" and out["estimate"]["status"] == "estimated"

@@ -109,7 +109,7 @@ def test_cosine_history_two_intervals():
     ts = np.linspace(0.0, 2.0, 801)
     exact = _piecewise([sympy.cos(T), x1, x2], 1.0, ts)
     assert _err(res, ts, exact) <= 1e-9 * np.max(np.abs(exact))   # reached 8.6e-12
-    assert 1.0 in res.t                                             # the breakpoint t0 + tau
+    assert np.any(res.t == 1.0)                                           # the breakpoint t0 + tau
     assert res.y[0, 0] == 1.0                                       # y(t0) = phi(t0)
 
 
@@ -414,7 +414,7 @@ def test_options_t_eval_progress_and_result():
     calls = []
     res = solve_dde(_decay, (0.0, 30.0), [1.0], lags=[1.0], t_eval=[0.5, 1.5, 30.0], progress=calls.append)
     np.testing.assert_allclose(res.y_eval[:, 0], [0.5, -0.375, res.sol(30.0)[0]], atol=1e-12)
-    assert 1 <= len(calls) <= 100 and calls[-1] == 1.0 and calls == sorted(calls)
+    assert len(calls) >= 1 and len(calls) <= 100 and calls[-1] == 1.0 and calls == sorted(calls)
     assert isinstance(res, DDESolution) and "success" in repr(res)
     with pytest.raises(AttributeError):
         res.outcome = Outcome.DIVERGED
