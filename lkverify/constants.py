@@ -198,9 +198,16 @@ class ConstantsJob:
                                   {"d": env.d, "rate": env.kappa, "p": env.p}, env.text()))
         if cert.status is Status.CERTIFIED and self.cross_check is not None:
             say(f"{item_name}: simulating histories inside the proved region")
-            results += self.cross_check(values, cert)
+            checked = self.cross_check(values, cert)
+            curves = {}
+            if isinstance(checked, tuple):  # (results, curves for the figure)
+                checked, curves = checked
+            results += checked
         verdict = _verdict(results, self.paper, cert)
-        return Report(item_name, dict(shown), tuple(results), verdict), {"certificate": cert, "params": params}
+        extra = {"certificate": cert, "params": params}
+        if cert.status is Status.CERTIFIED and self.cross_check is not None:
+            extra["trajectories"] = curves
+        return Report(item_name, dict(shown), tuple(results), verdict), extra
 
 
 def _plot_envelopes(extra: dict, path, *, values=None, simulate_fn=None) -> None:
@@ -216,7 +223,7 @@ def _plot_envelopes(extra: dict, path, *, values=None, simulate_fn=None) -> None
         return
     fig, axes = plt.subplots(1, len(cert.envelopes), figsize=(6 * len(cert.envelopes), 4), squeeze=False)
     dt = cert.constants["delta_tilde"]
-    tt = np.linspace(0, 2000, 801)
+    tt = np.geomspace(1e-2, 1e6, 400)
     for ax, env in zip(axes[0], cert.envelopes):
         for frac in (1.0, 0.5, 0.1):
             ax.loglog(tt + 1, env(tt, frac * dt), label=f"‖χ‖_τ = {frac:g} δ̃")
