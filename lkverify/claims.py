@@ -20,7 +20,7 @@ from .status import Status
 from .system import System
 from .terms import Term
 
-__all__ = ["Hypothesis", "DerivativeClaim", "IdentityClaim"]
+__all__ = ["Hypothesis", "MatrixHypothesis", "DerivativeClaim", "IdentityClaim"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -59,6 +59,9 @@ class Hypothesis:
             return Result("hypothesis", self.name, Status.UNDECIDED, None,
                           f"hypothesis{ref} depends on unset parameters {sorted(map(str, m.free_symbols))}")
         m = sympy.nsimplify(m) if isinstance(m, sympy.Float) else sympy.simplify(m)
+        if m.has(sympy.oo, -sympy.oo, sympy.zoo, sympy.nan):
+            return Result("hypothesis", self.name, Status.FAILED, None,
+                          f"fails{ref}: the margin {m} is not finite (a divergent integral?)")
         positive, zero = m.is_positive, m.is_zero
         status = Status.EXACT
         if positive is None and zero is None:  # undecidable symbolically: certify with an interval
@@ -73,6 +76,34 @@ class Hypothesis:
         if holds:
             return Result("hypothesis", self.name, status, m, f"holds{ref}: margin {_show(m)} {rel} 0")
         return Result("hypothesis", self.name, Status.FAILED, m, f"fails{ref}: margin {_show(m)}, need {rel} 0")
+
+
+@dataclasses.dataclass(frozen=True)
+class MatrixHypothesis:
+    """A hypothesis ``M ≻ 0`` on a matrix built from the parameters (e.g. ΞD + DΞᵀ of paper 000).
+
+    Decided exactly (rational LDLᵀ) when the entries are rational, with arb balls
+    otherwise; the margin is a lower bound of λ_min (:func:`lkverify.conditions.matrix_positive_definite`).
+    """
+
+    name: str
+    matrix: object
+    reference: str = ""
+
+    def evaluate(self, substitution) -> Result:
+        from .conditions import matrix_positive_definite
+
+        M = sympy.Matrix(self.matrix).applyfunc(lambda x: sympy.nsimplify(apply_substitution(sympy.sympify(x), substitution)))
+        ref = f" {self.reference}" if self.reference else ""
+        if M.free_symbols:
+            return Result("hypothesis", self.name, Status.UNDECIDED, None,
+                          f"hypothesis{ref} depends on unset parameters {sorted(map(str, M.free_symbols))}")
+        if any(x.has(sympy.oo, -sympy.oo, sympy.zoo, sympy.nan) for x in M):
+            return Result("hypothesis", self.name, Status.FAILED, None,
+                          f"fails{ref}: the matrix has entries that are not finite (a divergent integral?)")
+        res = matrix_positive_definite(M, name=self.name, symmetrize=True)
+        r = res.to_result("hypothesis")
+        return Result("hypothesis", self.name, r.status, r.value, f"{ref.strip()} {r.detail}".strip())
 
 
 def _show(m) -> str:

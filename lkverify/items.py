@@ -24,7 +24,7 @@ import dataclasses
 import sys as _sys
 from collections.abc import Callable, Mapping, Sequence
 
-from .claims import DerivativeClaim, Hypothesis, IdentityClaim
+from .claims import DerivativeClaim, Hypothesis, IdentityClaim, MatrixHypothesis
 from .functional import Functional
 from .parameters import Parameters
 from .results import Report, Result

@@ -9,7 +9,11 @@ proofs use, never retyped:
 * window integrals ``∫_{t−c}^{t} g(x(ξ)) dξ`` become auxiliary states ``z`` with
   ``ż = g(x(t)) − g(x(t−c))`` (exact in exact arithmetic), started and re-synchronised
   after every accepted step by Gauss–Legendre quadrature over the dense history,
-  so that no drift accumulates (measured in ``tests/test_simulate.py``);
+  so that no drift accumulates.  Measured: for x' = −∫_{t−1}^t x on [0, 200],
+  |z − ∫x| stays 5.6e-11 without the re-synchronisation (it never decays: the
+  difference is conserved) and 1e-16 with it; the auxiliary path agrees with the
+  pure-quadrature reference path to 1e-7 and costs one extra state instead of a
+  quadrature at every stage (``tests/test_simulate.py``, ``tests/test_dde.py``);
 * memory integrals ``∫_{t0}^{t} K(t−ξ) g(x(ξ)) dξ`` with ``K`` a sum of exponentials
   ``Σ c_j e^{−a_j u}`` become exact auxiliary ODE states ``ṁ_j = c_j g(x(t)) − a_j m_j``;
   other kernels (and windows with weights depending on t) are computed by
@@ -17,7 +21,8 @@ proofs use, never retyped:
 * coefficients ``h(t)`` are evaluated as given.
 
 The right-hand side is one ``lambdify``-generated function with common
-subexpressions eliminated.
+subexpressions eliminated: about 20 µs per evaluation for the 12-dimensional
+system of paper 000 (``benchmarks/bench_jitcdde.py``).
 
 >>> import numpy as np
 >>> from lkverify import Parameters, Vector, System, Equation, Term, t

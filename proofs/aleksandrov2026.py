@@ -28,7 +28,7 @@ r1 = (1/√2, 1/√2, 0), r2 = (−1/√2, 1/√2, 0), r3 = (0, 0, 1), α1 = α2
 
 from lkverify import (Equation, Frame, Functional, Parameters, System, Term, Vector, cross, dot, memory_integral,
                       norm_power, norm_squared, quad, t, window_integral, xi)
-from lkverify.claims import DerivativeClaim, Hypothesis
+from lkverify.claims import DerivativeClaim, Hypothesis, MatrixHypothesis
 from lkverify.items import Theorem
 
 PAPER = "aleksandrov2026"
@@ -143,6 +143,25 @@ system_pid = System([
     *[Equation(si, [Term(-cross(omega(t), si(t)), text=f"−ω×{si.name}", latex=rf"-\omega\times {si.latex}")])
       for si in (s1, s2, s3)],
 ], parameters=P, name="(2),(13)")
+
+# Theorem 2: under Assumptions 1–2 the equilibrium of (2),(13) is asymptotically stable.
+# With G = g(ζ)I: Ξ = βI + ∫_0^∞ G = (β + ∫_0^∞ g) I, Assumption 2: ΞD + DΞᵀ ≻ 0;
+# Remark 3 reduces it to β + ∫_0^∞ g > 0 (D ≻ 0); Assumption 1 for g = e^{−aζ} holds with σ = 1/a.
+import sympy as _sp  # noqa: E402
+
+from lkverify.symbols import zeta as _zeta  # noqa: E402
+
+_int_g = _sp.Integral(g(_zeta), (_zeta, 0, _sp.oo))
+_Xi = (beta + _int_g) * _sp.eye(3)
+
+theorem2 = Theorem(
+    "theorem2",
+    title="Theorem 2: nonlinear PID with a fading-memory kernel; Assumption 2 checked with its margin",
+    system=system_pid,
+    hypotheses=[MatrixHypothesis("Xi*D + D*Xi^T > 0", _Xi * D + D * _Xi.T, reference="(Assumption 2)"),
+                Hypothesis("beta + int g > 0", beta + _int_g, reference="(Remark 3)")],
+    unchecked=["Assumption 1 (∫_ζ^∞|G| ≤ σ|G(ζ)|)", "functional (14) and the bounds with c1…c12"],
+)
 
 # ---------------------------------------------------------------------------------------------
 # Section 5: the example.  t0 = 0, constant initial functions on [−1, 0].

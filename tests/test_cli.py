@@ -128,3 +128,18 @@ def test_bare_command_reports_the_catalogue(capsys):
     assert code == 0
     assert "aleksandrov2023.theorem3" in out and "aleksandrov2026.theorem1" in out
     assert "verdict" in out
+
+
+def test_theorem2_assumption2_margin_exact_and_refuted(capsys):
+    code, out, _ = run(capsys, "check", "aleksandrov2026.theorem2", "--json")
+    doc = json.loads(out)
+    assert code == 0
+    by = {r["name"]: r for r in doc["results"]}
+    assert by["Xi*D + D*Xi^T > 0"]["status"] == "exact" and by["Xi*D + D*Xi^T > 0"]["value"] == 6
+    assert by["beta + int g > 0"]["value"] == 1.5
+    code, out, _ = run(capsys, "check", "aleksandrov2026.theorem2", "--set", "beta=-2", "--json")
+    by = {r["name"]: r for r in json.loads(out)["results"]}
+    assert code == 1 and by["Xi*D + D*Xi^T > 0"]["status"] == "failed"
+    code, out, _ = run(capsys, "check", "aleksandrov2026.theorem2", "--set", "g=1", "--json")
+    by = {r["name"]: r for r in json.loads(out)["results"]}
+    assert code == 1 and by["beta + int g > 0"]["status"] == "failed"
