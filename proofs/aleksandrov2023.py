@@ -423,6 +423,32 @@ def _cross_check(v, cert, *, samples=8, t_end=300.0, seed=11):
                                   f"‖χ‖_τ = {chi:.4g} {'<' if inside else '≥'} δ̃ = {dt:.4g} "
                                   f"({'inside' if inside else 'outside: the estimate does not apply'}); "
                                   f"max trajectory/envelope = {chk.max_ratio:.4g}"))
+    # The printed estimate (15) itself, from histories with ‖χ‖_τ just inside its printed region 0.28.
+    worst15, viol15 = 0.0, []
+    for k in range(samples):
+        chi = 0.27
+        th = rng.uniform(0, np.pi / 2)
+        e0, w0 = chi * np.sin(th), chi * np.cos(th)
+        ax = rng.normal(size=3)
+        ax -= (ax @ rv) * rv
+        ax /= np.linalg.norm(ax)
+        ang = 2 * np.arcsin(e0 / 2)
+        s0 = np.cos(ang) * rv + np.sin(ang) * np.cross(ax, rv)
+        w = rng.normal(size=3)
+        w *= w0 / np.linalg.norm(w)
+        tr = simulate(system, history={"s": list(s0), "omega": list(w)}, t_end=t_end, values=vals, t_eval=grid)
+        denom = 1 + PRINTED_15["d3"] * chi * tr.t
+        for name, q, d in (("d1", np.linalg.norm(tr.states["s"] - rv, axis=1), PRINTED_15["d1"]),
+                           ("d2", np.linalg.norm(tr.states["omega"], axis=1), PRINTED_15["d2"])):
+            chk = cross_check(tr.t, q, d * chi / denom, name=name)
+            worst15 = max(worst15, chk.max_ratio)
+            if chk.first_violation is not None:
+                viol15.append(f"sample {k + 1} ({name}) at t = {chk.first_violation:.4g}")
+    out.append(Result("envelope", "printed (15) at ‖χ‖_τ = 0.27", _St.FAILED if viol15 else _St.SIMULATED,
+                      {"samples": samples, "max_ratio": worst15, "violations": viol15},
+                      f"{samples} constant histories with ‖χ‖_τ = 0.27 < 0.28 against the printed constants: largest "
+                      f"trajectory/envelope ratio {worst15:.3g}; "
+                      + ("violations: " + ", ".join(viol15) if viol15 else "no violation (not a proof: simulated)")))
     status = _St.FAILED if violations else _St.SIMULATED
     out.insert(0, Result("envelope", "histories inside the proved region", status,
                          {"samples": samples, "max_ratio_d1": worst["d1"], "max_ratio_d2": worst["d2"],
