@@ -36,8 +36,8 @@ Why ``"yzx"`` is the default: papers 001 and 002 give the initial attitude by th
 "самолётные углы крена, тангажа и рыскания" of Russian flight mechanics, whose
 standard (GOST 20058-80, Krylov's aircraft angles) is the sequence ψ about the
 vertical y, θ about z, φ about x.  The papers print no matrix, so this is an
-assumption, not a reading; every function takes ``convention=`` and the Fig. 7
-table (:func:`fig7_chi_norms`) shows how much the choice matters.
+assumption, not a reading; every function takes ``convention=`` and
+:func:`chi_norm_table` shows how much the choice matters.
 
 Inertial vectors in body axes
 -----------------------------
@@ -71,11 +71,9 @@ import numpy as np
 from lkverify.errors import InputError
 
 __all__ = [
-    "ALEKSANDROV2017_ANGLES", "ALEKSANDROV2017_OMEGA", "ALEKSANDROV2023_ANGLES",
-    "ALEKSANDROV2023_FIG7_ANGLES", "ALEKSANDROV2023_FIG7_OMEGA", "ALEKSANDROV2023_OMEGA",
-    "ALEKSANDROV2023_R", "ALEKSANDROV2026_OMEGA", "ALEKSANDROV2026_TRIAD", "AxisAngle",
+    "AxisAngle",
     "CHI_DEFINITIONS", "CONVENTIONS", "ChiNormRow", "ChiNormTable", "DEFAULT_CONVENTION",
-    "axis_angle_from_rotation", "check_rotation", "chi_norm", "euler_rhs", "fig7_chi_norms",
+    "axis_angle_from_rotation", "check_rotation", "chi_norm", "euler_rhs", "chi_norm_table",
     "inertial_vectors_from_angles", "inertial_vectors_in_body", "mrp_from_quaternion",
     "mrp_from_rotation", "poisson_rhs", "quaternion_from_mrp", "quaternion_from_rotation",
     "rotation_from_angles", "rotation_from_axis_angle", "rotation_from_mrp",
@@ -105,26 +103,6 @@ _ALIASES = {"gost": "yzx", "krylov": "yzx", "aerospace": "zyx", "nasa": "zyx"}
 DEFAULT_CONVENTION = "yzx"
 
 _DIRECTIONS = ("body_to_base", "base_to_body")
-
-# --------------------------------------------------------------------------------------
-# the papers' initial data (all constant on [−τ, 0])
-
-#: paper 001 section 6: roll φ, pitch θ, yaw ψ (rad); r_i not printed (base axes assumed)
-ALEKSANDROV2017_ANGLES = (0.5, 0.5, -0.5)
-ALEKSANDROV2017_OMEGA = (0.3, 0.3, 0.3)
-#: paper 002 section 6, Figs. 1-6: roll, pitch, yaw (rad), ω = (1, 1, 1)
-ALEKSANDROV2023_ANGLES = (0.5, 0.6, -0.8)
-ALEKSANDROV2023_OMEGA = (1.0, 1.0, 1.0)
-#: paper 002 Fig. 7: roll, pitch, yaw (rad), ω = (0.1, 0.1, 0.1); the paper reports ‖χ‖_τ = 0.25
-ALEKSANDROV2023_FIG7_ANGLES = (0.8, 0.8, -0.8)
-ALEKSANDROV2023_FIG7_OMEGA = (0.1, 0.1, 0.1)
-#: paper 002 section 6: the stabilized body axis r = (1, 1, 1)/√3
-ALEKSANDROV2023_R = tuple([1.0 / math.sqrt(3.0)] * 3)
-#: paper 000 section 5: s1, s2, s3 printed directly, as the columns of this matrix
-ALEKSANDROV2026_TRIAD = np.array([[0.0, 2.0, -1.0], [0.0, 1.0, 2.0], [math.sqrt(5.0), 0.0, 0.0]]) / math.sqrt(5.0)
-ALEKSANDROV2026_TRIAD.setflags(write=False)
-ALEKSANDROV2026_OMEGA = (0.3, -0.4, 0.4)
-
 
 def _canonical_convention(convention: str) -> str:
     name = str(convention).lower()
@@ -200,7 +178,7 @@ def check_rotation(R, *, atol: float = 1e-9, name: str = "R") -> np.ndarray:
 
     Examples
     --------
-    >>> check_rotation(ALEKSANDROV2026_TRIAD).shape
+    >>> check_rotation(np.array([[0, 2, -1], [0, 1, 2], [5 ** 0.5, 0, 0]]) / 5 ** 0.5).shape
     (3, 3)
     >>> check_rotation([[1, 0, 0], [0, 1, 0], [0, 0, -1]])  # doctest: +ELLIPSIS
     Traceback (most recent call last):
@@ -586,10 +564,10 @@ def inertial_vectors_from_angles(roll, pitch, yaw, targets=None, *,
     --------
     Paper 002, Figs. 1–6 (default convention "yzx"), and paper 001's triad:
 
-    >>> r = np.array(ALEKSANDROV2023_R)
-    >>> np.round(inertial_vectors_from_angles(*ALEKSANDROV2023_ANGLES, r), 4) + 0.0
+    >>> r = np.full(3, 3 ** -0.5)
+    >>> np.round(inertial_vectors_from_angles(0.5, 0.6, -0.8, r), 4) + 0.0
     array([ 0.9998,  0.0079, -0.0179])
-    >>> S = inertial_vectors_from_angles(*ALEKSANDROV2017_ANGLES)
+    >>> S = inertial_vectors_from_angles(0.5, 0.5, -0.5)
     >>> np.round(S, 4) + 0.0
     array([[ 0.7702,  0.4794,  0.4207],
            [-0.5991,  0.7702,  0.219 ],
@@ -766,24 +744,18 @@ class ChiNormTable:
         return tuple(sorted({round(row.value, decimals) for row in self.rows}))
 
 
-def fig7_chi_norms(*, angles=ALEKSANDROV2023_FIG7_ANGLES, omega=ALEKSANDROV2023_FIG7_OMEGA,
-                   r=ALEKSANDROV2023_R, reported: float = 0.25) -> ChiNormTable:
-    """‖χ‖_τ of paper 002's Fig. 7 initial data under every supported reading.
+def chi_norm_table(angles, omega, r, *, reported: float) -> ChiNormTable:
+    """‖χ‖_τ of a constant history given by aircraft angles, ω and r, under every supported reading.
 
-    The history is constant on [−τ, 0]: roll φ = θ = 0.8, yaw ψ = −0.8,
-    ω = (0.1, 0.1, 0.1), r = (1, 1, 1)/√3; the paper reports ‖χ‖_τ = 0.25 (and
-    uses ‖χ‖_τ < 0.28).  Tabulated: every convention × matrix direction × way to
-    build s × angle unit × norm definition (with χ̇ = 0, and for ``"theorem1"``
-    also the Poisson-consistent χ̇ = (−ω × s, 0)).
-
-    Findings (see the tests): no reading reproduces 0.25.  In radians,
-    ‖s − r‖ = 0.9381 ("yzx", "xyz") or 1.3655 ("zyx"), independent of the matrix
-    direction (‖Rᵀr − r‖ = ‖r − Rr‖), so ‖χ‖_τ ≥ 0.938 > 0.28; read in degrees the
-    values are 0.17–0.20.
+    Tabulated: every convention × matrix direction × way to build s × angle unit ×
+    norm definition (with χ̇ = 0, and for ``"theorem1"`` also the Poisson-consistent
+    χ̇ = (−ω × s, 0)), to compare with a ``reported`` value.  Paper 002's Fig. 7
+    data (the catalogue item ``aleksandrov2023.fig7_chi``) is the case in point:
+    no reading reproduces its 0.25.
 
     Examples
     --------
-    >>> table = fig7_chi_norms()
+    >>> table = chi_norm_table((0.8, 0.8, -0.8), (0.1, 0.1, 0.1), [3 ** -0.5] * 3, reported=0.25)
     >>> round(table.default, 4), table.reproduced
     (0.954, False)
     """

@@ -486,3 +486,24 @@ from lkverify.items import Check  # noqa: E402
 # The printed bound on V̇ in the proof of Theorem 3 writes the ω–history term as b(λ + c7τ)‖ω‖∫‖s−r‖^μ.
 theorem3_bound = Check("theorem3_bound", parameters=P, checks=[_printed_bound_refuted],
                        title="The printed V̇ bound of Theorem 3's proof: b(λ+c7τ)‖ω‖∫‖s−r‖^μ with b < 0")
+
+
+# ‖χ‖_τ of the Fig. 7 data: the paper reports 0.25 (inside its region 0.28).
+from lkverify.rigidbody import chi_norm_table as _chi_norm_table  # noqa: E402
+
+
+def _fig7_chi(v):
+    table = _chi_norm_table((0.8, 0.8, -0.8), (0.1, 0.1, 0.1), list(R_TARGET), reported=0.25)
+    values = sorted({round(row.value, 4) for row in table.rows})
+    nearest = min(values, key=lambda x: abs(x - 0.25))
+    status = Status.FAILED if not table.reproduced else Status.ESTIMATED  # a float computation, not a proof
+    return [Result("constant", "‖χ‖_τ of the Fig. 7 data (printed 0.25)", status,
+                   {"default": table.default, "values": values, "nearest": nearest, "reproduced": table.reproduced},
+                   f"computed {table.default:.4g} under the default reading (GOST yzx aircraft angles, radians, "
+                   f"uniform norm of (s − r, ω)); over every convention, matrix direction, angle unit and norm "
+                   f"definition the values are {values[0]:.3g} … {values[-1]:.3g}, the nearest to 0.25 being "
+                   f"{nearest:.3g}: the printed 0.25 is not reproduced")]
+
+
+fig7_chi = Check("fig7_chi", parameters=P, checks=[_fig7_chi], relevant=(),
+                 title="‖χ‖_τ of the Fig. 7 initial data: the printed 0.25 against every reading of the angles")

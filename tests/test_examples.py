@@ -152,3 +152,11 @@ def test_cli_simulate_bad_input(capsys, argv, needle):
     code = main(argv)
     err = capsys.readouterr().err
     assert code == 2 and needle in err and len(err.strip().splitlines()) == 1
+
+
+def test_fig7_printed_history_norm_is_not_reproduced_by_any_reading():
+    (item,) = find_items("aleksandrov2023.fig7_chi")
+    (r,) = item.run({}).results
+    assert r.status is Status.FAILED
+    assert r.value["default"] == pytest.approx(0.953973, abs=1e-6)
+    assert abs(r.value["nearest"] - 0.25) > 0.05 and not r.value["reproduced"]

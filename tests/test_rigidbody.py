@@ -8,13 +8,27 @@ from scipy.linalg import expm
 from scipy.spatial.transform import Rotation
 
 from lkverify.errors import InputError
-from lkverify.rigidbody import (ALEKSANDROV2017_ANGLES, ALEKSANDROV2023_ANGLES, ALEKSANDROV2023_FIG7_ANGLES,
-                                ALEKSANDROV2023_FIG7_OMEGA, ALEKSANDROV2023_R, ALEKSANDROV2026_TRIAD,
-                                CHI_DEFINITIONS, CONVENTIONS, DEFAULT_CONVENTION, axis_angle_from_rotation,
-                                check_rotation, chi_norm, euler_rhs, fig7_chi_norms, inertial_vectors_from_angles,
-                                inertial_vectors_in_body, mrp_from_quaternion, mrp_from_rotation, poisson_rhs,
-                                quaternion_from_mrp, quaternion_from_rotation, rotation_from_angles,
-                                rotation_from_axis_angle, rotation_from_mrp, rotation_from_quaternion, skew)
+from lkverify.rigidbody import (axis_angle_from_rotation, check_rotation, CHI_DEFINITIONS, chi_norm,
+                                chi_norm_table, CONVENTIONS, DEFAULT_CONVENTION, euler_rhs,
+                                inertial_vectors_from_angles, inertial_vectors_in_body, mrp_from_quaternion,
+                                mrp_from_rotation, poisson_rhs, quaternion_from_mrp,
+                                quaternion_from_rotation, rotation_from_angles, rotation_from_axis_angle,
+                                rotation_from_mrp, rotation_from_quaternion, skew)
+
+
+# The papers' initial data (constant on [−τ, 0]), as printed.
+ALEKSANDROV2017_ANGLES = (0.5, 0.5, -0.5)  # paper 001 section 6: roll, pitch, yaw (rad)
+ALEKSANDROV2023_ANGLES = (0.5, 0.6, -0.8)  # paper 002 section 6, Figs. 1–6
+ALEKSANDROV2023_FIG7_ANGLES = (0.8, 0.8, -0.8)  # paper 002 Fig. 7; the paper reports ‖χ‖_τ = 0.25
+ALEKSANDROV2023_FIG7_OMEGA = (0.1, 0.1, 0.1)
+ALEKSANDROV2023_R = tuple([1.0 / math.sqrt(3.0)] * 3)
+ALEKSANDROV2026_TRIAD = np.array([[0.0, 2.0, -1.0], [0.0, 1.0, 2.0], [math.sqrt(5.0), 0.0, 0.0]]) / math.sqrt(5.0)
+
+
+def fig7_chi_norms(*, reported=0.25):
+    return chi_norm_table(ALEKSANDROV2023_FIG7_ANGLES, ALEKSANDROV2023_FIG7_OMEGA, ALEKSANDROV2023_R,
+                          reported=reported)
+
 
 R3 = np.array(ALEKSANDROV2023_R)
 #: scipy's intrinsic sequence and the order of (roll, pitch, yaw) it takes, per convention
