@@ -67,7 +67,7 @@ class ConstantsJob:
         The paper's printed values of the outputs (name → value).
     applies : callable, optional
         ``applies(values)`` → None, or the reason the model does not apply
-        (e.g. a hypothesis of the derivation fails); the job then reports undecided.
+        (e.g. a hypothesis of the derivation fails); that is bad input (InputError).
     cross_check : callable, optional
         ``cross_check(values, certificate)`` → list of Results (simulations).
     """
@@ -111,9 +111,8 @@ class ConstantsJob:
 
         if self.applies is not None:
             why = self.applies(values)
-            if why:
-                results.append(Result("region", "model", Status.UNDECIDED, None, why))
-                return Report(item_name, dict(shown), tuple(results), f"undecided: {why}"), {}
+            if why:  # outside the hypotheses the derivation rests on: bad input, not a result
+                raise InputError(f"{item_name}: {why}")
         consts = {}
         for tpl in self.templates:
             say(f"{item_name}: constant {tpl.name} = sup {tpl.text}")

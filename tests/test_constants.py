@@ -120,3 +120,10 @@ def test_flagship_estimate_15_is_certified_and_compared_with_the_paper(capsys):
 def test_constants_needs_a_job(capsys):
     assert main(["constants", "aleksandrov2026.theorem1"]) == 2
     assert "no constants job" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("sets, needle", [(["--set", "mu=1"], "μ = 2"), (["--set", "a=0", "--set", "b=1"], "(14)")])
+def test_constants_outside_the_hypotheses_is_bad_input(capsys, sets, needle):
+    assert main(["constants", "aleksandrov2023.theorem3", *sets]) == 2
+    err = capsys.readouterr().err
+    assert needle in err and len(err.strip().splitlines()) == 1
