@@ -368,6 +368,20 @@ def _printed_bound_refuted(v):
                    f"place of b the step holds but forces the small region certified here")]
 
 
+def _random_history(rng, rv, chi):
+    """A constant history with ‖(s − r, ω)‖ = χ: a random split between ‖s − r‖ and ‖ω‖, random directions."""
+    th = rng.uniform(0, np.pi / 2)
+    e0, w0 = chi * np.sin(th), chi * np.cos(th)
+    ax = rng.normal(size=3)
+    ax -= (ax @ rv) * rv
+    ax /= np.linalg.norm(ax)
+    ang = 2 * np.arcsin(e0 / 2)  # ‖s − r‖ = 2 sin(angle/2)
+    s0 = np.cos(ang) * rv + np.sin(ang) * np.cross(ax, rv)
+    w = rng.normal(size=3)
+    w *= w0 / np.linalg.norm(w)
+    return {"s": list(s0), "omega": list(w)}
+
+
 def _cross_check(v, cert, *, samples=8, t_end=300.0, seed=11):
     """Simulate histories inside the proved region and the Fig. 7 data against the certified envelope."""
     from lkverify.envelope import cross_check
@@ -384,17 +398,7 @@ def _cross_check(v, cert, *, samples=8, t_end=300.0, seed=11):
     cases = []
     dt = cert.constants["delta_tilde"]
     for k in range(samples):
-        chi = dt * 0.999 * rng.uniform(0.5, 1.0)
-        th = rng.uniform(0, np.pi / 2)
-        e0, w0 = chi * np.sin(th), chi * np.cos(th)
-        ax = rng.normal(size=3)
-        ax -= (ax @ rv) * rv
-        ax /= np.linalg.norm(ax)
-        ang = 2 * np.arcsin(e0 / 2)
-        s0 = np.cos(ang) * rv + np.sin(ang) * np.cross(ax, rv)
-        w = rng.normal(size=3)
-        w *= w0 / np.linalg.norm(w)
-        cases.append((f"sample {k + 1}", {"s": list(s0), "omega": list(w)}))
+        cases.append((f"sample {k + 1}", _random_history(rng, rv, dt * 0.999 * rng.uniform(0.5, 1.0))))
     cases.append(("Fig. 7 data", FIG7))
     out = []
     curves = {"d1": {}, "d2": {}}
@@ -427,16 +431,7 @@ def _cross_check(v, cert, *, samples=8, t_end=300.0, seed=11):
     worst15, viol15 = 0.0, []
     for k in range(samples):
         chi = 0.27
-        th = rng.uniform(0, np.pi / 2)
-        e0, w0 = chi * np.sin(th), chi * np.cos(th)
-        ax = rng.normal(size=3)
-        ax -= (ax @ rv) * rv
-        ax /= np.linalg.norm(ax)
-        ang = 2 * np.arcsin(e0 / 2)
-        s0 = np.cos(ang) * rv + np.sin(ang) * np.cross(ax, rv)
-        w = rng.normal(size=3)
-        w *= w0 / np.linalg.norm(w)
-        tr = simulate(system, history={"s": list(s0), "omega": list(w)}, t_end=t_end, values=vals, t_eval=grid)
+        tr = simulate(system, history=_random_history(rng, rv, chi), t_end=t_end, values=vals, t_eval=grid)
         denom = 1 + PRINTED_15["d3"] * chi * tr.t
         for name, q, d in (("d1", np.linalg.norm(tr.states["s"] - rv, axis=1), PRINTED_15["d1"]),
                            ("d2", np.linalg.norm(tr.states["omega"], axis=1), PRINTED_15["d2"])):
