@@ -177,9 +177,13 @@ def _term_blocks(term, system: System, funcs) -> list[Block]:
         by_time.setdefault(a.args[0], []).append((a, d))
     for time, pairs in by_time.items():
         sub = system.derivative_substitution(time)
-        expr = sympy.Add(*[sympy.diff(Pt, d) * sub[a] for a, d in pairs])
-        out.append(Block(src_text, "delayed", f"∂/∂x({time}) [{src_text}] · ẋ({time})",
-                         rf"\partial_{{x({sympy.latex(time)})}}\left[{src_latex}\right]\cdot\dot x({sympy.latex(time)})",
+        # chain rule: d/dt x(θ(t)) = ẋ(θ(t)) · θ′(t)  (θ = t − h(t), t/2, …)
+        inner = sympy.diff(time, t)
+        expr = inner * sympy.Add(*[sympy.diff(Pt, d) * sub[a] for a, d in pairs])
+        factor, factor_latex = ("", "") if inner == 1 else (f" · ({inner})", rf"\cdot\left({sympy.latex(inner)}\right)")
+        out.append(Block(src_text, "delayed", f"∂/∂x({time}) [{src_text}] · ẋ({time}){factor}",
+                         rf"\partial_{{x({sympy.latex(time)})}}\left[{src_latex}\right]\cdot\dot x({sympy.latex(time)})"
+                         + factor_latex,
                          finish(expr)))
     # Leibniz rule for each integral
     upper, lower, inner = [], [], []

@@ -33,7 +33,8 @@ from .canonical import Canonicalizer
 from .parameters import Parameters
 from .status import Status
 from .terms import Term
-from .witness import Witness, evaluate_many, make_witness
+from .errors import InputError
+from .witness import Witness, evaluate_many, make_witness, witness_constant
 
 __all__ = ["TermDifference", "IdentityResult", "check_identity"]
 
@@ -143,14 +144,17 @@ def check_identity(claimed: Sequence[Term], reference: Sequence[Term], *, name: 
     rng = np.random.default_rng(seed)
     claimed, reference = list(claimed), list(reference)
     all_terms = claimed + reference
-    witness: Witness | None = None
+    _refuse_floats(name, claimed, reference)
+    witnesses: list[Witness] = []
     worst = None  # (relative difference, witness, value, scale)
+    residue_check = None
     try:
         with deadline.enforced():
             # 1. numeric witnesses
             for _ in range(points):
                 deadline.check()
                 w = make_witness(states, parameters, fixed=values, rng=rng)
+                witnesses.append(w)
                 vals = evaluate_many([term.expr for term in all_terms], w)
                 diff = sum(vals[: len(claimed)]) - sum(vals[len(claimed):])
                 scale = max(1.0, sum(abs(v) for v in vals))
@@ -159,36 +163,139 @@ def check_identity(claimed: Sequence[Term], reference: Sequence[Term], *, name: 
                     worst = (rel, w, diff, scale)
             witness = worst[1] if worst else None
             refuted = worst is not None and worst[0] > REFUTE_TOL
-            numeric_zero = worst is None or worst[0] < ZERO_TOL
             # 2. exact normal forms (also needed for the term-by-term report)
             canon = Canonicalizer(constraints, deadline=deadline)
             nf = canon.normal_forms([term.expr for term in all_terms])
             total = sum(nf.polys[: len(claimed)], nf.ring.zero) - sum(nf.polys[len(claimed):], nf.ring.zero)
             exact_zero = total == 0
             differences = () if exact_zero else _term_report(claimed, reference, nf, witness)
+            # 3. a nonzero residue is evaluated by itself (no cancellation against the large terms)
+            if not exact_zero:
+                residue_check = _residue_at_witnesses(nf, total, witnesses, deadline)
+                if residue_check.refutes:
+                    witness = residue_check.witness
     except BudgetExceeded as exc:
+        w0 = worst[1] if worst else None
         return IdentityResult(name, Status.UNDECIDED, f"{exc} before the check finished",
-                              witness=witness.describe(states) if witness else None,
-                              numeric_points=points, seconds=time.monotonic() - start)
+                              witness=w0.describe(states) if w0 else None,
+                              numeric_points=len(witnesses), seconds=time.monotonic() - start)
     seconds = time.monotonic() - start
     wjson = witness.describe(states) if witness else None
-    wdiff = worst[2] if worst else None
     if exact_zero:
+        wdiff = worst[2] if worst else None
         note = "" if not refuted else (" (a numeric witness disagreed by a relative "
                                        f"{worst[0]:.2g}; the exact proof stands, the quadrature was inaccurate)")
         return IdentityResult(name, Status.EXACT,
                               f"the difference reduces to 0 modulo the constraints; checked numerically at "
                               f"{points} random witnesses first{note}",
                               (), wjson, wdiff, points, seconds)
+    rc = residue_check
+    if rc.refutes:
+        return IdentityResult(name, Status.FAILED,
+                              f"claimed − derived reduces to a nonzero residue of {rc.n_terms} term(s), "
+                              f"{rc.describe()}; {len(differences)} differing group(s) of terms",
+                              differences, wjson, rc.value, points, seconds)
     if refuted:
         return IdentityResult(name, Status.FAILED,
-                              f"claimed − derived = {wdiff:.6g} at a witness (relative {worst[0]:.2g}); "
+                              f"claimed − derived = {worst[2]:.6g} at a witness (relative {worst[0]:.2g}); "
                               f"{len(differences)} differing group(s) of terms",
-                              differences, wjson, wdiff, points, seconds)
-    why = ("the normal form leaves a residue that vanishes at every witness (a relation between atoms "
-           "the reduction does not know)") if numeric_zero else \
-        f"the normal form is nonzero but the witnesses show only a relative {worst[0]:.2g}"
-    return IdentityResult(name, Status.UNDECIDED, why, differences, wjson, wdiff, points, seconds)
+                              differences, wjson, worst[2], points, seconds)
+    return IdentityResult(name, Status.UNDECIDED, rc.why_undecided(), differences, wjson, rc.value, points, seconds)
+
+
+def _refuse_floats(name: str, claimed, reference) -> None:
+    """Floating-point numbers in an identity are refused: they may already be rounded."""
+    for side, terms in (("claimed", claimed), ("derived", reference)):
+        for term in terms:
+            floats = sorted(term.expr.atoms(sympy.Float), key=float) if hasattr(term.expr, "atoms") else []
+            if floats:
+                raise InputError(
+                    f"{name}: the {side} term {term.text!r} contains the floating-point number {floats[0]}; "
+                    f"expected exact numbers (a float may have been rounded before lkverify sees it): write "
+                    f"sympy.Rational(p, q) or a string such as '1/10'")
+
+
+@dataclasses.dataclass(frozen=True)
+class _ResidueCheck:
+    """The nonzero residue claimed − derived, evaluated by itself at the witnesses."""
+
+    n_terms: int
+    terms: tuple  # (text, value at the refuting witness) of the largest residual terms
+    witness: Witness | None
+    value: float | None
+    relative: float | None  # |Σ| / Σ|terms| at the witness
+    how: str  # "interval arithmetic" or "floating point with quadrature"
+    refutes: bool
+    all_zero: bool
+
+    def describe(self) -> str:
+        shown = ", ".join(f"{text} = {value:.6g}" for text, value in self.terms)
+        more = "" if len(self.terms) >= self.n_terms else f", … ({self.n_terms - len(self.terms)} more)"
+        return (f"which is {self.value:.6g} at a witness ({self.how}); residual terms there: {shown}{more}")
+
+    def why_undecided(self) -> str:
+        if self.all_zero:
+            return (f"the normal form leaves a residue of {self.n_terms} term(s) that evaluates to 0 "
+                    f"(to rounding) at every witness: it may vanish through a relation between its "
+                    f"non-polynomial atoms (sin² + cos² = 1, exp·exp, nested powers) that the reduction does "
+                    f"not use, so it is neither proved nor refuted")
+        return (f"the normal form leaves a residue of {self.n_terms} term(s) whose value at the witnesses "
+                f"(relative {self.relative:.2g} of its terms' size) cannot be told from the evaluation error "
+                f"({self.how})")
+
+
+def _residue_at_witnesses(nf, total, witnesses, deadline) -> _ResidueCheck:
+    """Evaluate the residue monomial by monomial at each witness; refute when it is clearly nonzero.
+
+    Without integrals the residue is a constant expression at a witness and its sign is
+    decided in interval arithmetic (:func:`lkverify.intervals.sign_of`); with integrals it is
+    evaluated in floating point with adaptive quadrature, and refutes when its value is
+    above ``REFUTE_TOL`` relative to the sum of its terms' absolute values.
+    """
+    monomials = [nf.canonicalizer.restore(m) for m in sympy.Add.make_args(total.as_expr())]
+    best = None
+    all_zero = True
+    for w in witnesses:
+        deadline.check()
+        vals = evaluate_many(monomials, w)
+        value = float(sum(vals))
+        scale = sum(abs(v) for v in vals)
+        rel = abs(value) / scale if scale > 0 else 0.0
+        certified = None
+        how = "floating point with quadrature"
+        if not any(m.has(sympy.Integral) for m in monomials):
+            certified = _certified_sign(sympy.Add(*monomials), w)
+            if certified is not None:
+                how = "interval arithmetic"
+        refutes = certified in (1, -1) if certified is not None else rel > REFUTE_TOL
+        if certified == 0 or (certified is None and rel < ZERO_TOL):
+            pass
+        else:
+            all_zero = False
+        if best is None or (refutes and not best[0]) or (refutes == best[0] and rel > best[3]):
+            order = sorted(range(len(vals)), key=lambda i: -abs(vals[i]))[:6]
+            terms = tuple((_short(sympy.sstr(monomials[i]), 80), vals[i]) for i in order)
+            best = (refutes, w, value, rel, how, terms)
+    refutes, w, value, rel, how, terms = best
+    return _ResidueCheck(len(monomials), terms, w, value, rel, how, refutes, all_zero)
+
+
+def _certified_sign(expr, w: Witness):
+    """The sign (1, −1, or 0 for an exact zero) of ``expr`` at the witness, or None if not decided."""
+    try:
+        from .intervals import sign_of
+    except ImportError:  # pragma: no cover - the interval layer ships with lkverify
+        return None
+    value = witness_constant(expr, w)
+    if value is None:
+        return None
+    if value == 0:
+        return 0
+    try:
+        res = sign_of(value, max_prec=1024)
+    except Exception:  # noqa: BLE001 - an expression the interval layer cannot enclose: fall back to floats
+        return None
+    return 0 if res.is_zero else res.sign
 
 
 def _term_report(claimed, reference, nf, witness) -> tuple:

@@ -24,6 +24,7 @@ import dataclasses
 import sys as _sys
 from collections.abc import Callable, Mapping, Sequence
 
+from .errors import InputError
 from .claims import DerivativeClaim, Hypothesis, IdentityClaim, MatrixHypothesis
 from .functional import Functional
 from .parameters import Parameters
@@ -94,9 +95,20 @@ class Theorem(Item):
                  unchecked: Sequence[str] = (), paper: str = "", constants=None):
         if not name.isidentifier():
             raise ValueError(f"item name must be an identifier, got {name!r}")
+        problems = []
         for c in claims:
             if not isinstance(c, (DerivativeClaim, IdentityClaim)):
-                raise TypeError(f"item {name}: claims must be DerivativeClaim or IdentityClaim, got {type(c).__name__}")
+                problems.append(f"claims must be DerivativeClaim or IdentityClaim, got {type(c).__name__}")
+            elif c.system is not system:
+                problems.append(f"claim {c.name!r} is stated along the system {c.system.name or c.system!r}, not "
+                                f"along this theorem's system {system.name or system!r}; declare it with the "
+                                f"theorem's own System object")
+        names = [h.name for h in hypotheses] + [c.name for c in claims if hasattr(c, "name")]
+        twice = sorted({n for n in names if names.count(n) > 1})
+        if twice:
+            problems.append(f"hypotheses and claims need distinct names, got {', '.join(map(repr, twice))} twice")
+        if problems:
+            raise InputError(f"theorem {name}: " + "; ".join(problems))
         self.name = name
         self.system = system
         self.functional = functional
@@ -131,7 +143,7 @@ class Theorem(Item):
         progress(f"{self.qualified_name}: hypotheses")
         sub_all = P.substitution(everything)
         for h in self.hypotheses:
-            results.append(h.evaluate(sub_all))
+            results.append(h.evaluate(sub_all, budget=budget))
         details = []
         sub_given = P.substitution(given)
         for k, claim in enumerate(self.claims):
@@ -142,23 +154,123 @@ class Theorem(Item):
             if res.differences:
                 details.append(res.as_text())
         return Report(self.qualified_name, {k: _show(v) for k, v in everything.items()}, tuple(results),
-                      self._verdict(results), tuple(details))
+                      self._verdict(results), tuple(details), self.chain(results))
 
     def _verdict(self, results) -> str:
-        failed = [r.name for r in results if r.status is Status.FAILED]
-        undecided = [r.name for r in results if r.status is Status.UNDECIDED]
-        if failed:
-            return f"failed: {', '.join(failed)}" + (f"; undecided: {', '.join(undecided)}" if undecided else "")
-        if undecided:
-            return f"undecided: {', '.join(undecided)}"
-        n_h = sum(r.kind == "hypothesis" for r in results)
-        n_i = sum(r.kind == "identity" for r in results)
-        text = f"all checked results hold ({n_h} hypotheses, {n_i} identities; every one exact or certified)"
-        if self.unchecked:
-            text += "; the conclusion is not established here: not yet checked: " + "; ".join(self.unchecked)
-        else:
-            text += "; conclusion established"
+        text = theorem_verdict(self.chain(results))
+        if self.unchecked and not text.startswith("established"):
+            text += "; the proof module lists as not yet checked: " + "; ".join(self.unchecked)
         return text
+
+    def chain(self, results) -> tuple:
+        """The links from the functional to the conclusion, each with what was checked of it.
+
+        Computed from the results, never from the author's ``unchecked`` list: a link
+        holds only when a result of this run proves it (``exact`` or ``certified``)
+        along this theorem's own system.
+
+        Returns
+        -------
+        tuple of Link
+        """
+        by_name = {r.name: r for r in results}
+        hyps = [by_name[h.name] for h in self.hypotheses if h.name in by_name]
+        links = [Link("hypotheses", _combined([r.status for r in hyps]) if hyps else Status.EXACT,
+                      f"{len(hyps)} hypothes{'is' if len(hyps) == 1 else 'es'} on the parameters"
+                      if hyps else "none declared")]
+        own = [c for c in self.claims if isinstance(c, DerivativeClaim) and self.functional is not None
+               and c.functional is self.functional]
+        if self.functional is None:
+            links.append(Link("V̇ along the system", None, "the theorem declares no functional"))
+        elif not own:
+            links.append(Link("V̇ along the system", None,
+                              "no claim states V̇ of the theorem's functional along its system"))
+        else:
+            sts = [by_name[c.name].status for c in own if c.name in by_name]
+            links.append(Link("V̇ along the system", _combined(sts),
+                              ", ".join(f"{c.name}: {by_name[c.name].status}" for c in own if c.name in by_name)))
+        links.append(Link("V ≥ φ(‖state‖), φ positive definite", None,
+                          "no bound step of this theorem checks it"))
+        links.append(Link("V̇ ≤ −ψ(‖state‖) on a stated region, ψ positive definite", None,
+                          "no bound step of this theorem checks it"))
+        others = [r for r in results if r.kind == "identity" and r.name not in {c.name for c in own}]
+        if others:
+            links.append(Link("intermediate identities", _combined([r.status for r in others]),
+                              ", ".join(f"{r.name}: {r.status}" for r in others)))
+        ready = all(link.status is not None and link.status.is_proof for link in links)
+        links.append(Link("conclusion", Status.EXACT if ready else None,
+                          "follows from the links above" if ready else "rests on the links above"))
+        return tuple(links)
+
+
+@dataclasses.dataclass(frozen=True)
+class Link:
+    """One link of a theorem's chain: what it states and how sure lkverify is of it.
+
+    Attributes
+    ----------
+    name : str
+    status : Status or None
+        ``None`` when nothing of this run checks the link (it is missing).
+    detail : str
+    """
+
+    name: str
+    status: Status | None
+    detail: str = ""
+
+    @property
+    def missing(self) -> bool:
+        return self.status is None
+
+    def to_json(self) -> dict:
+        return {"link": self.name, "status": None if self.status is None else self.status.value,
+                "detail": self.detail}
+
+
+def _combined(statuses) -> Status | None:
+    """The weakest of several statuses (failed < undecided < estimated/simulated < certified < exact)."""
+    statuses = list(statuses)
+    if not statuses:
+        return None
+    for s in (Status.FAILED, Status.UNDECIDED, Status.SIMULATED, Status.ESTIMATED, Status.CERTIFIED):
+        if s in statuses:
+            return s
+    return Status.EXACT
+
+
+def theorem_verdict(links) -> str:
+    """The verdict of a chain of links (see :meth:`Theorem.chain`), computed from their statuses.
+
+    "established" only when every link is ``exact`` or ``certified``; otherwise the
+    verdict names the failed, undecided and missing links, in the chain's order.
+
+    Examples
+    --------
+    >>> theorem_verdict([Link("V̇", Status.EXACT), Link("V ≥ φ", None, "no bound step")])
+    'not established: missing: V ≥ φ (no bound step); checked: V̇ (exact)'
+    >>> theorem_verdict([Link("V̇", Status.EXACT), Link("conclusion", Status.EXACT)])
+    'established: every link exact or certified (V̇, conclusion)'
+    """
+    links = list(links)
+    failed = [link for link in links if link.status is Status.FAILED]
+    undecided = [link for link in links if link.status is not None and not link.status.is_proof
+                 and link.status is not Status.FAILED]
+    missing = [link for link in links if link.status is None and link.name != "conclusion"]
+    proved = [link for link in links if link.status is not None and link.status.is_proof]
+    if not failed and not undecided and not missing and all(not link.missing for link in links):
+        return f"established: every link exact or certified ({', '.join(link.name for link in links)})"
+    parts = []
+    if failed:
+        parts.append("failed: " + "; ".join(f"{link.name} ({link.detail})" for link in failed))
+    if undecided:
+        parts.append("undecided: " + "; ".join(f"{link.name} ({link.status}: {link.detail})" for link in undecided))
+    if missing:
+        parts.append("missing: " + "; ".join(f"{link.name} ({link.detail})" for link in missing))
+    text = "; ".join(parts) + " (not established)" if failed else "not established: " + "; ".join(parts)
+    if proved:
+        text += "; checked: " + ", ".join(f"{link.name} ({link.status})" for link in proved)
+    return text
 
 
 def _show(value) -> str:

@@ -23,6 +23,7 @@ from collections.abc import Callable, Iterable, Mapping, Sequence
 
 import numpy as np
 import sympy
+from sympy.core.function import AppliedUndef
 
 from .errors import InputError
 from .symbols import t as _t, zeta as _zeta
@@ -122,10 +123,7 @@ class ParameterSpec:
                 raise InputError(f"{name}: expected a diagonal matrix like diag(5,6,4), got {value.tolist()}")
             if not (value - value.T).is_zero_matrix:
                 raise InputError(f"{name}: expected a symmetric matrix, got {value.tolist()}")
-            eigs = _eigenvalues(value)
-            if min(eigs) <= 0:
-                raise InputError(f"{name}: expected a positive-definite matrix, got one with eigenvalue "
-                                 f"{_fmt(min(eigs))}; use e.g. diag({','.join(['1'] * n)})")
+            _check_positive_definite(name, value, n)
             return sympy.ImmutableMatrix(value)
         if self.kind is Kind.UNIT_VECTOR:
             n = self.shape[0]
@@ -195,18 +193,23 @@ class ParameterSpec:
         raise AssertionError(self.kind)  # pragma: no cover
 
 
-def _eigenvalues(m: sympy.Matrix) -> list:
-    try:
-        eigs = list(m.eigenvals(multiple=True))
-        if all(e.is_real for e in eigs):
-            return eigs
-    except Exception:  # noqa: BLE001 - fall back to floating eigenvalues below
-        pass
-    return [sympy.Float(x) for x in np.linalg.eigvalsh(np.array(m.evalf(), dtype=float))]
+def _check_positive_definite(name: str, value, n: int) -> None:
+    """Raise InputError unless ``value ≻ 0`` is proved (exact LDLᵀ, or arb balls for irrational entries)."""
+    from .conditions import matrix_positive_definite
+    from .status import Status
+
+    res = matrix_positive_definite(value, name=name)
+    if res.status.is_proof:
+        return
+    example = f"diag({','.join(['1'] * n)})"
+    if res.status is Status.FAILED:
+        raise InputError(f"{name}: expected a positive-definite matrix, got one that is not: {res.detail}; "
+                         f"use e.g. {example}")
+    raise InputError(f"{name}: expected a positive-definite matrix, but positivity could not be proved "
+                     f"({res.detail}); give exact rational entries, e.g. {example}")
 
 
 def _fmt(x) -> str:
-    x = sympy.nsimplify(x) if isinstance(x, sympy.Float) else x
     return str(x) if len(str(x)) < 20 else f"{float(x):.6g}"
 
 
@@ -357,11 +360,15 @@ def _coerce(value, name: str = "value"):
 
         return parse_value(value, name=name, variables={"t": _t, "zeta": _zeta})
     if isinstance(value, (list, tuple)):
-        return sympy.ImmutableMatrix(value)
-    if isinstance(value, float):
-        if not np.isfinite(value):
+        return _coerce(sympy.ImmutableMatrix(value), name)
+    if isinstance(value, (float, np.floating, sympy.Float)):
+        # a float is taken at its exact binary value (0.5 → 1/2, 0.1 → 3602879701896397/2**55),
+        # never snapped to a "nearby" simple number; text such as "0.1" is read as exactly 1/10
+        if not np.isfinite(float(value)):
             return sympy.nan
-        return sympy.nsimplify(value, rational=True)
+        return sympy.Rational(sympy.Float(value)) if isinstance(value, sympy.Float) else sympy.Rational(float(value))
+    if isinstance(value, sympy.MatrixBase) and any(isinstance(x, sympy.Float) for x in value):
+        return value.applyfunc(lambda x: _coerce(x, name) if isinstance(x, sympy.Float) else x)
     return value
 
 
@@ -372,6 +379,11 @@ def apply_substitution(expr, sub: Mapping):
     if funcs:
         expr = expr.replace(lambda e: isinstance(e, sympy.Function) and e.func in funcs,
                             lambda e: funcs[e.func](*e.args))
+        # derivatives of the replaced functions (ḣ(t) of a time-varying delay) are evaluated;
+        # derivatives of states stay as they are
+        expr = expr.replace(lambda e: isinstance(e, (sympy.Derivative, sympy.Subs))
+                            and not e.atoms(AppliedUndef),
+                            lambda e: e.doit())
     if syms:
         expr = expr.xreplace(syms)
     return expr

@@ -89,6 +89,7 @@ class Report:
     results: tuple
     verdict: str
     text_details: tuple = ()
+    chain: tuple = ()
 
     @property
     def holds(self) -> bool:
@@ -100,8 +101,11 @@ class Report:
         return 0 if self.holds else 1
 
     def to_json(self) -> dict:
-        return {"item": self.item, "parameters": jsonable(self.parameters),
-                "results": [r.to_json() for r in self.results], "verdict": self.verdict}
+        out = {"item": self.item, "parameters": jsonable(self.parameters),
+               "results": [r.to_json() for r in self.results], "verdict": self.verdict}
+        if self.chain:
+            out["chain"] = [link.to_json() for link in self.chain]
+        return out
 
     def dumps(self) -> str:
         return json.dumps(self.to_json(), indent=2, ensure_ascii=False)

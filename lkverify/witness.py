@@ -32,7 +32,7 @@ from .parameters import Kind, Parameters, apply_substitution
 from .states import Frame, Vector
 from .symbols import t
 
-__all__ = ["Witness", "make_witness", "evaluate"]
+__all__ = ["Witness", "make_witness", "evaluate", "witness_constant"]
 
 _theta = sympy.Symbol("theta", real=True)
 
@@ -150,6 +150,24 @@ def _substitute_parameters(expr, w: Witness):
     expr = apply_substitution(sympy.sympify(expr), w.substitution)
     if expr.has(sympy.Derivative, sympy.Subs):
         expr = expr.replace(lambda e: isinstance(e, (sympy.Derivative, sympy.Subs)), lambda e: e.doit())
+    return expr
+
+
+def witness_constant(expr, w: Witness):
+    """``expr`` at the witness as an exact SymPy constant (histories and parameters substituted).
+
+    Returns ``None`` when the expression keeps integrals or undefined functions; the
+    result is exact (rational rotations, ``sin``/``cos`` of rationals) and can be
+    enclosed by :mod:`lkverify.intervals`.
+    """
+    expr = _substitute_parameters(expr, w)
+    expr = expr.replace(lambda e: isinstance(e, AppliedUndef) and e.func in w.histories,
+                        lambda e: w.histories[e.func](*e.args))
+    expr = expr.xreplace({t: w.t_eval})
+    if expr.has(sympy.Derivative, sympy.Subs):
+        expr = expr.replace(lambda e: isinstance(e, (sympy.Derivative, sympy.Subs)), lambda e: e.doit())
+    if expr.free_symbols or expr.has(sympy.Integral) or expr.atoms(AppliedUndef):
+        return None
     return expr
 
 
