@@ -267,7 +267,7 @@ def theorem_verdict(links) -> str:
         parts.append("undecided: " + "; ".join(f"{link.name} ({link.status}: {link.detail})" for link in undecided))
     if missing:
         parts.append("missing: " + "; ".join(f"{link.name} ({link.detail})" for link in missing))
-    text = "; ".join(parts) + " (not established)" if failed else "not established: " + "; ".join(parts)
+    text = "; ".join(parts) if failed else "not established: " + "; ".join(parts)
     if proved:
         text += "; checked: " + ", ".join(f"{link.name} ({link.status})" for link in proved)
     return text

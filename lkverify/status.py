@@ -1,7 +1,32 @@
-"""The status vocabulary: how sure lkverify is of a result.
+"""The status vocabulary: how sure lkverify is of a result, and the one exactness policy.
 
 Every result lkverify prints carries exactly one of these statuses; see the
 table in the design card.  Only ``EXACT`` and ``CERTIFIED`` are proofs.
+
+The exactness policy (every checker follows it; this is where it is written down):
+
+1. **Exact inputs stay exact.**  Entries, margins and user expressions are never
+   passed through ``nsimplify`` or rounded: a rational stays that rational, however
+   close it is to a simpler one (1 − 10⁻²⁰ is not 1).
+2. **Floats are taken at their exact binary value, or refused.**  A Python or SymPy
+   float given as a parameter value, a matrix entry or inside a hypothesis becomes
+   the rational it stores (0.5 → 1/2; 0.1 → 3602879701896397/2⁵⁵), never a
+   "nearby" simple number.  Text such as ``"0.1"`` on the command line is read as the
+   exact decimal 1/10.  Identity claims refuse floats (:class:`~lkverify.errors.InputError`):
+   only ``exact`` could confirm them, and a float may have been rounded before lkverify
+   sees it.
+3. **A value that went through floating point is never ``EXACT``.**  It is decided in
+   outward-rounded interval arithmetic (:mod:`lkverify.intervals`): ``CERTIFIED`` or
+   ``FAILED``, else ``UNDECIDED``.  A point value (mpmath, NumPy) is an estimate, not an
+   enclosure.  Irrational constants (√2 − 1) are decided by enclosures too: ``CERTIFIED``.
+4. **``EXACT`` means reduced symbolically**: an identity whose difference reduces to 0
+   modulo the stated constraints, a rational margin, an LDLᵀ in fractions.
+5. **A refutation is rechecked**: an identity is ``FAILED`` when its exact nonzero
+   residue is certified nonzero at a witness (interval arithmetic) or is clearly nonzero
+   in floating point relative to its own terms; a matrix witness xᵀMx ≤ 0 is checked
+   exactly or in intervals.  Otherwise ``UNDECIDED``, with what stopped the proof.
+6. **Verdicts are computed** from the chain of links (:meth:`lkverify.items.Theorem.chain`):
+   "established" only when every link is ``EXACT`` or ``CERTIFIED``.
 """
 
 from __future__ import annotations

@@ -272,3 +272,16 @@ def test_aleksandrov2026_theorem2_fails_for_negative_xi():
     (item,) = find_items("aleksandrov2026.theorem2")
     report = item.run({"beta": "-1/2 - 10**-9"})
     assert [r.status for r in report.results] == [Status.FAILED, Status.FAILED]
+
+
+def test_readme_negative_vdot_form_near_singular_is_failed():
+    # −V̇ of the README proof is the form [[a − c, −b/2], [−b/2, c]] in (x(t), x(t−τ)); at a = b = 2.00000009,
+    # c = 1.00000009 its determinant is −2.025e-15 < 0: rounding the entries would call it positive definite
+    Q, x, system, V, claim, hyp = _readme_theorem()
+    a_, b_, c_ = (Q[n].obj for n in ("a", "b", "c"))
+    form = MatrixHypothesis("−V̇ ≻ 0", [[a_ - c_, -b_ / 2], [-b_ / 2, c_]])
+    th = Theorem("form", system=system, functional=V, hypotheses=[form], claims=[claim])
+    bad = th.run({"a": "2.00000009", "b": "2.00000009", "c": "1.00000009"}).results[0]
+    assert bad.status is Status.FAILED
+    good = th.run({"a": "2.0000001", "b": "2.00000009", "c": "1.00000009"}).results[0]
+    assert good.status is Status.EXACT
