@@ -91,9 +91,13 @@ from collections.abc import Callable, Mapping, Sequence
 
 import numpy as np
 import sympy
-from flint import arb, fmpq, fmpz
+from flint import arb
 
 from .errors import InputError
+from .intervals import (  # the one SymPy → arb converter, its ball primitives and outward rounding
+    _JUMPS, _NAN, _ONE, _UNIT, _ZERO, _abs, _acos, _cos, _cosh, _heaviside, _increasing, _ipow, _log, _max,
+    _min, _powgen, _real_dummies, _rpow_neg, _rpow_pos, _sgn, _sin, _sq, _sqrt, _sqrt_nn, _sympy_number_ball,
+    compile_program, float_down, float_up, to_ball)
 from .status import Status
 
 __all__ = [
@@ -105,295 +109,10 @@ __all__ = [
 
 _INF = math.inf
 _add, _sub, _neg = operator.add, operator.sub, operator.neg
-_NAN = arb("nan")
-_ZERO = arb(0)
-_ONE = arb(1)
-_HALF_BALL = arb(0.5, 0.5)          # contains [0, 1]
-_PI = arb.pi()
-_TWO_PI = 2 * _PI
-_HALF_PI = _PI / 2
-_UNIT = arb(0, 1)                    # contains [-1, 1]
-#: balls wider than this are enclosed from their endpoints (arb's own wide-ball bounds are loose)
-_WIDE = 2.0 ** -24
-
 #: default budgets: a constant should certify in seconds; these are the ceilings
 DEFAULT_BUDGET_BOXES = 200_000
 DEFAULT_BUDGET_SECONDS = 30.0
 
-
-# ---------------------------------------------------------------------------
-# outward-rounded conversions between arb and float
-# ---------------------------------------------------------------------------
-
-def _up(x: arb) -> float:
-    """A float ≥ every point of the ball ``x`` (``inf`` if ``x`` is not finite)."""
-    if not x.is_finite():
-        return _INF
-    u = x.upper()
-    f = float(u)
-    while arb(f) < u:
-        f = math.nextafter(f, _INF)
-    return f
-
-
-def _down(x: arb) -> float:
-    """A float ≤ every point of the ball ``x`` (``-inf`` if ``x`` is not finite)."""
-    if not x.is_finite():
-        return -_INF
-    lo = x.lower()
-    f = float(lo)
-    while arb(f) > lo:
-        f = math.nextafter(f, -_INF)
-    return f
-
-
-def _hull(a: arb, b: arb) -> arb:
-    """A ball containing the interval between the balls ``a`` and ``b``."""
-    return a.union(b)
-
-
-def _hull0(u: arb) -> arb:
-    """A ball containing [0, u] for a ball ``u`` whose points are ≥ 0."""
-    return _ZERO.union(u.upper())
-
-
-def _interval(lo: float, hi: float) -> arb:
-    """A ball containing the float interval [lo, hi] (a point ball if lo == hi)."""
-    if lo == hi:
-        return arb(lo)
-    return arb(lo).union(arb(hi))
-
-
-# ---------------------------------------------------------------------------
-# arb primitives used by generated code (each returns an enclosure)
-# ---------------------------------------------------------------------------
-
-def _pw(p: arb, n: int) -> arb:
-    """p**n for a (near-)point ball by repeated squaring."""
-    result = _ONE
-    base = p
-    while n:
-        if n & 1:
-            result = result * base
-        n >>= 1
-        if n:
-            base = base * base
-    return result
-
-
-def _ipow(x: arb, n: int) -> arb:
-    """x**n for an integer n ≥ 2, from the endpoints (tight on wide balls)."""
-    if not x.is_finite():
-        return _NAN
-    lo, hi = x.lower(), x.upper()
-    if n % 2:
-        return _hull(_pw(lo, n), _pw(hi, n))
-    if lo >= 0:
-        return _hull(_pw(lo, n), _pw(hi, n))
-    if hi <= 0:
-        return _hull(_pw(hi, n), _pw(lo, n))
-    m = hi if hi > -lo else -lo
-    return _hull0(_pw(m, n))
-
-
-def _sq(x: arb) -> arb:
-    """x**2 from the endpoints (a point ball: x*x)."""
-    if not x.rad() > 0:
-        return x * x
-    if not x.is_finite():
-        return _NAN
-    lo, hi = x.lower(), x.upper()
-    if lo >= 0:
-        return (lo * lo).union(hi * hi)
-    if hi <= 0:
-        return (hi * hi).union(lo * lo)
-    m = hi if hi > -lo else -lo
-    return _ZERO.union((m * m).upper())
-
-
-def _sqrt_nn(x: arb) -> arb:
-    """sqrt(x) where x ≥ 0 is known (the ball may poke below 0 by rounding)."""
-    if x > 0:
-        if x.rad() > _WIDE:
-            return x.lower().sqrt().union(x.upper().sqrt())
-        return x.sqrt()
-    if not x.is_finite():
-        return _NAN
-    u = x.upper()
-    if u < 0:
-        return _NAN
-    return _hull0(u.sqrt())
-
-
-def _sqrt(x: arb) -> arb:
-    """sqrt(x); not finite unless the ball is certainly ≥ 0."""
-    if x >= 0:
-        return _sqrt_nn(x)
-    return _NAN
-
-
-def _rpow_pos(x: arb, p: arb, nonneg: bool) -> arb:
-    """x**p for a constant p > 0 (x ≥ 0 required); [0, hi**p] if x touches 0."""
-    if not x.is_finite():
-        return _NAN
-    if x > 0:
-        lo, hi = x.lower(), x.upper()
-        return _hull(lo ** p, hi ** p)
-    if not (nonneg or x >= 0):
-        return _NAN
-    u = x.upper()
-    if u < 0:
-        return _NAN
-    if u.is_zero():
-        return _ZERO
-    return _hull0(u ** p)
-
-
-def _rpow_neg(x: arb, p: arb) -> arb:
-    """x**p for a constant p < 0 (x > 0 required)."""
-    if x > 0:
-        lo, hi = x.lower(), x.upper()
-        return _hull(hi ** p, lo ** p)
-    return _NAN
-
-
-def _powgen(x: arb, e: arb) -> arb:
-    """x**e with a non-constant exponent: exp(e·log x), x > 0 required."""
-    if x > 0:
-        return (e * x.log()).exp()
-    return _NAN
-
-
-def _log(x: arb) -> arb:
-    if x > 0:
-        if x.rad() > _WIDE:
-            return x.lower().log().union(x.upper().log())
-        return x.log()
-    return _NAN
-
-
-def _abs(x: arb) -> arb:
-    if x >= 0:
-        return x
-    if x <= 0:
-        return -x
-    if not x.is_finite():
-        return _NAN
-    return _hull0(x.abs_upper())
-
-
-def _sgn(x: arb) -> arb:
-    if x > 0:
-        return _ONE
-    if x < 0:
-        return -_ONE
-    if x.is_zero():
-        return _ZERO
-    if not x.is_finite() and x.is_nan():
-        return _NAN
-    return arb(0, 1)
-
-
-def _heaviside(x: arb) -> arb:
-    if x > 0:
-        return _ONE
-    if x < 0:
-        return _ZERO
-    if x.is_nan():
-        return _NAN
-    return _HALF_BALL
-
-
-def _sin(x: arb) -> arb:
-    """sin on a ball, tight for wide balls: the endpoint values, widened to ±1 at extrema inside."""
-    if not x.rad() > _WIDE:
-        return x.sin()
-    if not x.is_finite():
-        return _NAN
-    lo, hi = x.lower(), x.upper()
-    if hi - lo >= _TWO_PI:
-        return _UNIT
-    a, b = lo.sin(), hi.sin()
-    top = _ONE if ((x - _HALF_PI) / _TWO_PI).contains_integer() else _maxpt([a.upper(), b.upper()])
-    bot = -_ONE if ((x + _HALF_PI) / _TWO_PI).contains_integer() else -_maxpt([-a.lower(), -b.lower()])
-    return bot.union(top)
-
-
-def _cos(x: arb) -> arb:
-    """cos on a ball, tight for wide balls (see :func:`_sin`)."""
-    if not x.rad() > _WIDE:
-        return x.cos()
-    if not x.is_finite():
-        return _NAN
-    lo, hi = x.lower(), x.upper()
-    if hi - lo >= _TWO_PI:
-        return _UNIT
-    a, b = lo.cos(), hi.cos()
-    top = _ONE if (x / _TWO_PI).contains_integer() else _maxpt([a.upper(), b.upper()])
-    bot = -_ONE if ((x - _PI) / _TWO_PI).contains_integer() else -_maxpt([-a.lower(), -b.lower()])
-    return bot.union(top)
-
-
-def _increasing(method: str):
-    """A monotone increasing arb function, enclosed from the endpoints on wide balls."""
-    def f(x: arb) -> arb:
-        if not x.rad() > _WIDE:
-            return getattr(x, method)()
-        if not x.is_finite():
-            return _NAN
-        return getattr(x.lower(), method)().union(getattr(x.upper(), method)())
-    f.__name__ = f"_{method}"
-    return f
-
-
-def _acos(x: arb) -> arb:
-    if not x.rad() > _WIDE:
-        return x.acos()
-    if not x.is_finite():
-        return _NAN
-    return x.upper().acos().union(x.lower().acos())
-
-
-def _cosh(x: arb) -> arb:
-    if not x.rad() > _WIDE:
-        return x.cosh()
-    if not x.is_finite():
-        return _NAN
-    a, b = x.lower().cosh(), x.upper().cosh()
-    top = _maxpt([a.upper(), b.upper()])
-    if x > 0 or x < 0:
-        return -_maxpt([-a.lower(), -b.lower()]) .union(top)
-    return _ONE.union(top)
-
-
-def _max(*xs: arb) -> arb:
-    if not all(x.is_finite() for x in xs):
-        return _NAN
-    lo = _maxpt([x.lower() for x in xs])
-    hi = _maxpt([x.upper() for x in xs])
-    return _hull(lo, hi)
-
-
-def _min(*xs: arb) -> arb:
-    if not all(x.is_finite() for x in xs):
-        return _NAN
-    lo = -_maxpt([-x.lower() for x in xs])
-    hi = -_maxpt([-x.upper() for x in xs])
-    return _hull(lo, hi)
-
-
-def _maxpt(points: list) -> arb:
-    """The largest of point balls (exact comparisons)."""
-    best = points[0]
-    for p in points[1:]:
-        if p > best:
-            best = p
-    return best
-
-
-# ---------------------------------------------------------------------------
-# the compiler: SymPy expression → generated code on arb balls
-# ---------------------------------------------------------------------------
 
 # ---------------------------------------------------------------------------
 # affine forms: first-order models that keep the linear dependence on the box
@@ -599,238 +318,6 @@ _AFF_OVERRIDES = {
 }
 
 
-_NATIVE = {  # SymPy function → helper (asin, acos: not finite on balls leaving [-1, 1])
-    sympy.exp: "_exp", sympy.sin: "_sin", sympy.cos: "_cos", sympy.atan: "_atan",
-    sympy.sinh: "_sinh", sympy.cosh: "_cosh", sympy.tanh: "_tanh", sympy.sinc: "_sinc",
-    sympy.asin: "_asin", sympy.acos: "_acos",
-}
-_NONNEG_FUNCS = (sympy.exp, sympy.cosh, sympy.Abs, sympy.Heaviside, sympy.acos)
-_JUMPS = (sympy.sign, sympy.Heaviside)
-_HELPERS = {
-    "_ipow": _ipow, "_sq": _sq, "_sqrt_nn": _sqrt_nn, "_sqrt": _sqrt, "_rpow_pos": _rpow_pos,
-    "_rpow_neg": _rpow_neg, "_powgen": _powgen, "_log": _log, "_abs": _abs, "_sgn": _sgn,
-    "_heaviside": _heaviside, "_max": _max, "_min": _min, "_tan": lambda x: x.tan(),
-    "_sinc": lambda x: x.sinc(), "_sin": _sin, "_cos": _cos, "_exp": _increasing("exp"),
-    "_atan": _increasing("atan"), "_sinh": _increasing("sinh"), "_tanh": _increasing("tanh"),
-    "_asin": _increasing("asin"), "_acos": _acos, "_cosh": _cosh, "_NAN": _NAN,
-}
-SUPPORTED = ("+", "-", "*", "/", "integer and real powers", "sqrt", "exp", "log", "sin", "cos",
-             "tan", "atan", "asin", "acos", "sinh", "cosh", "tanh", "sinc", "Abs", "sign", "Heaviside", "Min",
-             "Max", "pi", "E", "rational and float constants")
-
-
-def _const_ball(node: sympy.Expr) -> arb | None:
-    """An arb enclosure of an atomic SymPy number, or None if not atomic."""
-    if node.is_Integer:
-        return arb(fmpz(int(node)))
-    if node.is_Rational:
-        return arb(fmpq(int(node.p), int(node.q)))
-    if node.is_Float:
-        sign, man, exp, _ = node._mpf_
-        if man == 0:
-            return _ZERO
-        value = fmpq(int(man) * 2 ** exp) if exp >= 0 else fmpq(int(man), 2 ** (-exp))
-        return arb(-value if sign else value)
-    if node is sympy.pi:
-        return arb.pi()
-    if node is sympy.E:
-        return _ONE.exp()
-    return None
-
-
-class _Emitter:
-    """Walks SymPy trees, emitting one line of Python per distinct node.
-
-    The generated source contains only register names (``r12``), argument
-    names (``x0``), constant slots (``K[3]``) and the helper names above --
-    never text taken from the user's expression.
-    """
-
-    def __init__(self, nvars: int, var_index: dict, var_nonneg: Sequence[bool]):
-        self.lines: list[str] = []
-        self.memo: dict = {}
-        self.consts: list[arb] = []
-        self.nonneg: dict[str, bool] = {}
-        self.var_index = var_index
-        for i in range(nvars):
-            self.nonneg[f"x{i}"] = bool(var_nonneg[i])
-        self.count = 0
-        self.fold = True
-
-    def _new(self, code: str, nonneg: bool) -> str:
-        name = f"r{self.count}"
-        self.count += 1
-        self.lines.append(f"    {name} = {code}")
-        self.nonneg[name] = nonneg
-        return name
-
-    def _const(self, ball: arb) -> str:
-        self.consts.append(ball)
-        name = f"K[{len(self.consts) - 1}]"
-        self.nonneg[name] = bool(ball >= 0)
-        return name
-
-    def emit(self, node) -> str:
-        try:
-            return self.memo[node]
-        except KeyError:
-            pass
-        name = self._emit(node)
-        self.memo[node] = name
-        return name
-
-    def _emit(self, node) -> str:
-        if node.is_Symbol:
-            if node not in self.var_index:
-                raise InputError(f"symbol {node} has no interval; give every free symbol a range "
-                                 f"or substitute its value first")
-            return f"x{self.var_index[node]}"
-        ball = _const_ball(node)
-        if ball is not None:
-            return self._const(ball)
-        if self.fold and node.is_number:
-            # a constant subexpression (sqrt(2), cos(1), ...): fold it once, now
-            sub = _Emitter(0, {}, ())
-            sub.fold = False
-            out = sub.emit(node)
-            fn = _build([out], sub, 0)
-            value = fn()[0]
-            name = self._const(value)
-            if node.is_nonnegative:
-                self.nonneg[name] = True
-            return name
-        if node.is_Add:
-            regs = [self.emit(a) for a in node.args]
-            return self._new(" + ".join(regs), all(self.nonneg[r] for r in regs))
-        if node.is_Mul:
-            return self._mul(node)
-        if node.is_Pow:
-            return self._pow(node.base, node.exp)
-        func = node.func
-        if func in _NATIVE:
-            (arg,) = node.args
-            r = self.emit(arg)
-            return self._new(f"{_NATIVE[func]}({r})", func in _NONNEG_FUNCS)
-        if func is sympy.tan:
-            return self._new(f"_tan({self.emit(node.args[0])})", False)
-        if func is sympy.log:
-            if len(node.args) != 1:
-                raise InputError(f"log with a base is not supported: {node}; write log(x)/log(b)")
-            return self._new(f"_log({self.emit(node.args[0])})", False)
-        if func is sympy.Abs:
-            return self._new(f"_abs({self.emit(node.args[0])})", True)
-        if func is sympy.sign:
-            return self._new(f"_sgn({self.emit(node.args[0])})", False)
-        if func is sympy.Heaviside:
-            return self._new(f"_heaviside({self.emit(node.args[0])})", True)
-        if func in (sympy.Max, sympy.Min):
-            regs = [self.emit(a) for a in node.args]
-            flags = [self.nonneg[r] for r in regs]
-            nonneg = any(flags) if func is sympy.Max else all(flags)
-            helper = "_max" if func is sympy.Max else "_min"
-            return self._new(f"{helper}({', '.join(regs)})", nonneg)
-        raise InputError(f"cannot enclose {func.__name__} (in {node}) in interval arithmetic; "
-                         f"supported: {', '.join(SUPPORTED)}")
-
-    def _mul(self, node) -> str:
-        coeff, factors = node.as_coeff_mul()
-        num, den = [], []
-        for f in factors:
-            if f.is_Pow and f.exp.is_Integer and f.exp < 0:
-                den.append(self.emit(f.base ** (-f.exp)) if f.exp != -1 else self.emit(f.base))
-            else:
-                num.append(self.emit(f))
-        negative = False
-        if coeff == -1:
-            negative = True
-        elif coeff != 1:
-            c = coeff
-            if c < 0:
-                negative, c = True, -c
-            num.insert(0, self.emit(c))
-        code = " * ".join(num) if num else self._const(_ONE)
-        nonneg = all(self.nonneg[r] for r in num + den) and not negative
-        if den:
-            code = f"({code}) / ({' * '.join(den)})"
-        if negative:
-            code = f"-({code})"
-        return self._new(code, nonneg)
-
-    def _pow(self, base, exp) -> str:
-        if exp.is_Integer:
-            n = int(exp)
-            if n == 0:
-                return self._const(_ONE)
-            if n == 1:
-                return self.emit(base)
-            if n < 0:
-                inner = self.emit(base ** (-n)) if n != -1 else self.emit(base)
-                return self._new(f"1 / {inner}", self.nonneg[inner])
-            r = self.emit(base)
-            if n == 2:
-                return self._new(f"_sq({r})", True)
-            return self._new(f"_ipow({r}, {n})", n % 2 == 0 or self.nonneg[r])
-        r = self.emit(base)
-        nonneg = self.nonneg[r] or bool(base.is_nonnegative)
-        if exp == sympy.S.Half:
-            return self._new(f"_sqrt_nn({r})" if nonneg else f"_sqrt({r})", True)
-        if exp == -sympy.S.Half:
-            inner = self._new(f"_sqrt_nn({r})" if nonneg else f"_sqrt({r})", True)
-            return self._new(f"1 / {inner}", True)
-        if exp.is_number:
-            if not exp.is_real:
-                raise InputError(f"complex exponent in {base}**{exp}")
-            p = self.emit(exp)
-            if exp.is_positive:
-                return self._new(f"_rpow_pos({r}, {p}, {nonneg})", True)
-            return self._new(f"_rpow_neg({r}, {p})", True)
-        e = self.emit(exp)
-        return self._new(f"_powgen({r}, {e})", True)
-
-
-def _build(outputs: list[str], em: _Emitter, nvars: int, *, affine: bool = False) -> Callable:
-    """Compile the emitted lines into a function returning a tuple of balls (affine forms)."""
-    args = ", ".join(f"x{i}" for i in range(nvars))
-    src = (f"def _f({args}):\n" + "\n".join(em.lines) + ("\n" if em.lines else "")
-           + f"    return ({', '.join(outputs)},)\n")
-    namespace = dict(_HELPERS)
-    if affine:
-        namespace.update(_AFF_OVERRIDES)
-    namespace["K"] = tuple(em.consts)
-    code = compile(src, "<lkverify.bounds generated>", "exec")
-    exec(code, namespace)  # noqa: S102 -- source built from our own tokens only
-    return namespace["_f"]
-
-
-def _to_ball(value) -> arb:
-    """An argument for a compiled function: a ball, an exact number or an interval."""
-    if isinstance(value, arb):
-        return value
-    if isinstance(value, bool):
-        raise InputError(f"expected a number, an arb ball or a (lo, hi) pair, got {value!r}")
-    if isinstance(value, (int, float)):
-        return arb(value)
-    if isinstance(value, fmpq):
-        return arb(value)
-    if isinstance(value, fractions.Fraction):
-        return arb(fmpq(value.numerator, value.denominator))
-    if isinstance(value, sympy.Basic):
-        return _sympy_number_ball(value)
-    if isinstance(value, tuple) and len(value) == 2:
-        lo, hi = (_to_ball(v) for v in value)
-        return lo.union(hi)
-    raise InputError(f"expected a number, an arb ball or a (lo, hi) pair, got {value!r}")
-
-
-def _sympy_number_ball(value) -> arb:
-    value = sympy.sympify(value)
-    if value.free_symbols:
-        raise InputError(f"expected a number, got {value} with symbols {sorted(map(str, value.free_symbols))}")
-    em = _Emitter(0, {}, ())
-    fn = _build([em.emit(value)], em, 0)
-    return fn()[0]
-
-
 @dataclasses.dataclass(frozen=True)
 class ArbFunction:
     """A SymPy expression compiled to ball arithmetic.
@@ -894,7 +381,7 @@ class ArbFunction:
         if len(args) != len(self.variables):
             raise InputError(f"expected {len(self.variables)} arguments "
                              f"({', '.join(map(str, self.variables))}), got {len(args)}")
-        return [_to_ball(a) for a in args]
+        return [to_ball(a) for a in args]
 
 
 def _check_symbols(variables) -> tuple:
@@ -905,24 +392,6 @@ def _check_symbols(variables) -> tuple:
     if problems:
         raise InputError("variables: " + "; ".join(problems) + "; pass distinct sympy.Symbol objects")
     return variables
-
-
-def _real_dummies(variables, signs: Sequence[tuple[bool, bool]] | None = None) -> dict:
-    """Real Dummy copies of the variables (nonnegative / positive when known)."""
-    dummies = {}
-    for i, v in enumerate(variables):
-        nonneg = bool(v.is_nonnegative)
-        pos = bool(v.is_positive)
-        if signs is not None:
-            nonneg = nonneg or signs[i][0]
-            pos = pos or signs[i][1]
-        kwargs = {"real": True}
-        if pos:
-            kwargs["positive"] = True
-        elif nonneg:
-            kwargs["nonnegative"] = True
-        dummies[v] = sympy.Dummy(v.name, **kwargs)
-    return dummies
 
 
 def _sympify_expr(expr, what: str = "expression") -> sympy.Expr:
@@ -996,15 +465,11 @@ def compile_arb(expr, variables: Sequence, *, gradient: bool = True,
     dummies = _real_dummies(variables, _signs)
     dexpr = expr.xreplace(dummies)
     dvars = [dummies[v] for v in variables]
-    index = {d: i for i, d in enumerate(dvars)}
     flags = [bool(d.is_nonnegative) for d in dvars]
-    n = len(dvars)
-
-    em = _Emitter(n, index, flags)
-    out = em.emit(dexpr)
-    value_fn = _build([out], em, n)
-    affine_fn = _build([out], em, n, affine=True)
-    nonnegative = em.nonneg[out]
+    back = {d: v for v, d in dummies.items()}
+    prog = compile_program([dexpr], dvars, nonnegative=flags, originals=back)
+    value_fn = prog.function()
+    affine_fn = prog.function(_AFF_OVERRIDES)
 
     grad_fn = None
     if gradient and not dexpr.has(*_JUMPS):
@@ -1012,14 +477,12 @@ def compile_arb(expr, variables: Sequence, *, gradient: bool = True,
             grads = [sympy.diff(dexpr, d) for d in dvars]
             bad = [g for g in grads if g.has(sympy.Derivative, sympy.Subs, sympy.DiracDelta)]
             if not bad:
-                em2 = _Emitter(n, index, flags)
-                outs = [em2.emit(dexpr)] + [em2.emit(g) for g in grads]
-                grad_fn = _build(outs, em2, n)
+                grad_fn = compile_program([dexpr, *grads], dvars, nonnegative=flags, originals=back).function()
         except InputError:
             grad_fn = None
-    return ArbFunction(expr=expr, variables=variables, nonnegative=nonnegative,
+    return ArbFunction(expr=expr, variables=variables, nonnegative=prog.nonnegative[0],
                        has_gradient=grad_fn is not None, _value=value_fn, _value_grad=grad_fn,
-                       _value_affine=affine_fn, _source_lines=len(em.lines))
+                       _value_affine=affine_fn, _source_lines=prog.lines)
 
 
 def compile_numpy(expr, variables: Sequence) -> Callable:
@@ -1065,17 +528,17 @@ def _lambdify(dvars, dexpr):
 # ---------------------------------------------------------------------------
 
 def _exact_number(value, what: str):
-    """A user number as a SymPy number; a Python float is read as the decimal it prints."""
+    """A user number as a SymPy number; a float is taken at its exact binary value (see :mod:`lkverify.status`)."""
     if isinstance(value, bool):
         raise InputError(f"{what}: expected a number, got {value!r}")
     if isinstance(value, float):
         if not math.isfinite(value):
             raise InputError(f"{what}: expected a finite number, got {value!r}")
-        return sympy.Rational(repr(value))
+        return sympy.Rational(value)
     if isinstance(value, (int, fractions.Fraction)):
         return sympy.Rational(value)
     if isinstance(value, sympy.Float):
-        return sympy.Rational(str(value))
+        return sympy.Rational(value)
     if isinstance(value, str):
         raise InputError(f"{what}: expected a number, got the string {value!r}; "
                          f"pass a number or a SymPy expression such as sympy.pi")
@@ -1141,7 +604,7 @@ def _parse_region(box, exprs: Sequence[sympy.Expr], what: str = "box") -> _Regio
         if lo_b > hi_b:
             problems.append(f"{var}: lower bound {lo} exceeds upper bound {hi}")
             continue
-        lo_o, hi_o, lo_i, hi_i = _down(lo_b), _up(hi_b), _up(lo_b), _down(hi_b)
+        lo_o, hi_o, lo_i, hi_i = float_down(lo_b), float_up(hi_b), float_up(lo_b), float_down(hi_b)
         if lo_i > hi_i:
             if lo == hi:
                 problems.append(f"{var}: the zero-width range [{lo}, {hi}] has no float inside; "
@@ -1357,7 +820,7 @@ class _BranchAndBound:
                 if changed:
                     continue
             break
-        upper = _up(v)
+        upper = float_up(v)
         c = []
         inside = True
         for i in range(n):
@@ -1384,7 +847,7 @@ class _BranchAndBound:
                     score = float(g.abs_upper()) * (hi[i] - lo[i])
                     if score > best:
                         best, dim = score, i
-            cu = _up(cen)
+            cu = float_up(cen)
             if cu < upper:
                 upper = cu
             if best <= 0.0:
@@ -1400,7 +863,7 @@ class _BranchAndBound:
                 r = (arb(hi[i]) - m).union(m - arb(lo[i])).abs_upper()
                 xs.append(_Aff(m, zero[:i] + (r,) + zero[i + 1:], _ZERO))
             A = self.faff(*xs)[0]
-            au = _up(A.ball()) if A.__class__ is _Aff else _up(A)
+            au = float_up(A.ball()) if A.__class__ is _Aff else float_up(A)
             if au < upper:
                 upper = au
         if dim < 0:
@@ -1448,7 +911,7 @@ class _BranchAndBound:
             nonlocal lower, lower_point
             upper, lo, hi, dim, c, fc, inside = box_eval
             if inside:
-                pl = _down(fc)
+                pl = float_down(fc)
                 if pl > lower:
                     lower, lower_point = pl, tuple(c)
                 if mode == "decide" and refute is not None and fc.is_finite():
@@ -1643,7 +1106,7 @@ def _sup(obj: _Objective, *, budget_boxes, budget_seconds, rel_gap, abs_gap, sta
     lower, lower_point = -_INF, None
     for _, p in cands[:3]:
         if obj.region.contains(p):
-            pl = _down(obj.point_ball(p))
+            pl = float_down(obj.point_ball(p))
             if pl > lower:
                 lower, lower_point = pl, p
     if not certify:
@@ -1687,8 +1150,8 @@ def sup_bound(expr, box: Mapping, *, budget_boxes: int = DEFAULT_BUDGET_BOXES,
     expr : sympy.Expr
         See :func:`compile_arb` for what may appear.
     box : mapping of sympy.Symbol to (lo, hi)
-        Finite bounds: numbers or SymPy constants (``sympy.pi``); a Python
-        float is read as the decimal it prints (``0.1`` is 1/10).
+        Finite bounds: numbers or SymPy constants (``sympy.pi``); a float is
+        taken at its exact binary value (pass ``sympy.Rational(1, 10)`` for 1/10).
     budget_boxes, budget_seconds
         Ceilings for the whole job (estimate included).
     rel_gap : float, default 1e-2
@@ -1839,8 +1302,8 @@ def _sign_check(expr, box, *, positive: bool, name, budget_boxes, budget_seconds
     def refute(p):
         val = obj.point_ball(p)
         if positive:      # −expr ≥ 0 proves expr ≤ 0
-            return (_down(val), tuple(p)) if val >= 0 else None
-        return (_down(val), tuple(p)) if val > 0 else None
+            return (float_down(val), tuple(p)) if val >= 0 else None
+        return (float_down(val), tuple(p)) if val > 0 else None
 
     out = _decide(obj, threshold=0.0, strict=positive, refute=refute, budget_boxes=budget_boxes,
                   budget_seconds=budget_seconds, starts=starts, seed=seed, progress=progress,
@@ -2192,7 +1655,7 @@ def check_constant(lhs, template, region: Mapping, claimed_c, *, name: str = "c"
     lhs, template, region, name, ratio
         As for :func:`best_constant`.
     claimed_c : number or SymPy number
-        A Python float is read as the decimal it prints (``9.21`` is 921/100).
+        A float is taken at its exact binary value (pass ``sympy.Rational(921, 100)`` for 9.21).
     budget_boxes, budget_seconds, starts, seed, enclosure, progress
         As for :func:`sup_bound`.
 
@@ -2240,12 +1703,12 @@ def check_constant(lhs, template, region: Mapping, claimed_c, *, name: str = "c"
             if not reg.contains(q):
                 continue
             val = violation._value(*[arb(x) for x in q], c_ball)[0]
-            if val > 0 and (best is None or _down(val) > best[0]):
-                best = (_down(val), q)
+            if val > 0 and (best is None or float_down(val) > best[0]):
+                best = (float_down(val), q)
         return best
 
     obj = _Objective(prep.ratio, reg)
-    out = _decide(obj, threshold=_down(c_ball), strict=False, refute=refute,
+    out = _decide(obj, threshold=float_down(c_ball), strict=False, refute=refute,
                   budget_boxes=budget_boxes, budget_seconds=budget_seconds * 0.75, starts=starts,
                   seed=seed, progress=progress, start=start, enclosure=enclosure)
     if out.kind == "failed":
@@ -2260,7 +1723,7 @@ def check_constant(lhs, template, region: Mapping, claimed_c, *, name: str = "c"
     notes = [sign_text] + ([prep.ratio_note] if prep.ratio_note else [])
     seconds = time.monotonic() - start
     if out.kind == "done" and sign_status.is_proof and prep.ratio_proved:
-        return CheckResult(name, claim, Status.CERTIFIED, None, _down(c_ball - arb(out.upper)), out.upper,
+        return CheckResult(name, claim, Status.CERTIFIED, None, float_down(c_ball - arb(out.upper)), out.upper,
                            out.boxes, seconds,
                            "; ".join([f"proved: sup lhs/template ≤ {_fmt(out.upper)} ≤ {c_exact} by arb "
                                       f"enclosures on {out.boxes} boxes"] + notes))

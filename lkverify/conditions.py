@@ -83,6 +83,7 @@ from flint import arb, fmpq, fmpq_mat
 
 from .budget import Deadline
 from .errors import InputError
+from .intervals import enclose, float_down, float_up, lower_fraction, sign_of, to_ball, upper_fraction
 from .results import Result
 from .status import Status
 
@@ -114,16 +115,6 @@ def _frac(value) -> Fraction | None:
             raise ValueError(f"an enclosure end must be finite, got {value!r}")
         return Fraction(value)
     return Fraction(value)
-
-
-def _float_down(q: Fraction) -> float:
-    f = float(q)
-    return math.nextafter(f, -math.inf) if Fraction(f) > q else f
-
-
-def _float_up(q: Fraction) -> float:
-    f = float(q)
-    return math.nextafter(f, math.inf) if Fraction(f) < q else f
 
 
 def _exact_str(value) -> str:
@@ -202,8 +193,8 @@ class Enclosure:
     def to_json(self) -> dict:
         """Floats rounded outward (``lo`` down, ``hi`` up) and the exact rationals as strings."""
         return {
-            "lo": None if self.lo is None else _float_down(self.lo),
-            "hi": None if self.hi is None else _float_up(self.hi),
+            "lo": None if self.lo is None else float_down(self.lo),
+            "hi": None if self.hi is None else float_up(self.hi),
             "lo_exact": None if self.lo is None else _exact_str(self.lo),
             "hi_exact": None if self.hi is None else _exact_str(self.hi),
             "exact": None if self.exact is None else str(self.exact),
@@ -335,7 +326,7 @@ class ConditionResult:
 
     def to_result(self, kind: str = "hypothesis") -> Result:
         """This verdict as a :class:`lkverify.results.Result` row (value: the margin's lower end, rounded down)."""
-        value = None if self.margin is None or self.margin.lo is None else _float_down(self.margin.lo)
+        value = None if self.margin is None or self.margin.lo is None else float_down(self.margin.lo)
         return Result(kind, self.name, self.status, value, self.detail)
 
 
@@ -559,69 +550,15 @@ def _enclose_exact(root) -> Enclosure:
         width = max(abs(a), abs(b)) * sympy.Rational(1, 2**64)
         a, b = root.poly.refine_root(a, b, eps=width)
         return Enclosure(_frac(sympy.Rational(a)), _frac(sympy.Rational(b)), exact=root)
-    with flint.ctx.workprec(128):
-        ball = _arb_of(root)
-    return Enclosure(_lower(ball), _upper(ball), exact=root)
+    ball = enclose(root, prec=128)
+    return Enclosure(lower_fraction(ball), upper_fraction(ball), exact=root)
 
 
 # ---------------------------------------------------------------------------------------------
 # arb helpers
 
 
-def _arb_of(expr) -> arb:
-    """A ball containing the real number ``expr`` (a SymPy constant expression), at the current precision."""
-    if isinstance(expr, Fraction):
-        return arb(fmpq(expr.numerator, expr.denominator))
-    if isinstance(expr, int):
-        return arb(expr)
-    if expr.is_Integer:
-        return arb(int(expr))
-    if expr.is_Rational:
-        return arb(fmpq(int(expr.p), int(expr.q)))
-    if isinstance(expr, sympy.Float):
-        p, q = sympy.Rational(expr).as_numer_denom()
-        return arb(fmpq(int(p), int(q)))
-    if expr is sympy.pi:
-        return arb.pi()
-    if expr is sympy.E:
-        return arb.const_e()
-    if expr.is_Add:
-        return sum((_arb_of(a) for a in expr.args[1:]), _arb_of(expr.args[0]))
-    if expr.is_Mul:
-        out = _arb_of(expr.args[0])
-        for a in expr.args[1:]:
-            out = out * _arb_of(a)
-        return out
-    if expr.is_Pow:
-        base, e = expr.args
-        b = _arb_of(base)
-        if e.is_Integer:
-            k = int(e)
-            out = arb(1)
-            for _ in range(abs(k)):
-                out = out * b
-            return out if k >= 0 else 1 / out
-        if e == sympy.Rational(1, 2):
-            return b.sqrt()
-        if e == sympy.Rational(-1, 2):
-            return b.rsqrt()
-        if e.is_Rational and e.q > 0:
-            r = b.root(int(e.q))
-            return _arb_of_pow(r, int(e.p))
-        return (_arb_of(e) * b.log()).exp()
-    funcs = {sympy.exp: arb.exp, sympy.log: arb.log, sympy.sin: arb.sin, sympy.cos: arb.cos,
-             sympy.tan: arb.tan, sympy.atan: arb.atan, sympy.sinh: arb.sinh, sympy.cosh: arb.cosh,
-             sympy.tanh: arb.tanh}
-    if expr.func in funcs and len(expr.args) == 1:
-        return funcs[expr.func](_arb_of(expr.args[0]))
-    if isinstance(expr, sympy.Abs):
-        return abs(_arb_of(expr.args[0]))
-    raise InputError(f"cannot enclose {expr} in arb: expected rationals, radicals, pi, E, exp, log, trig "
-                     "functions; got the unsupported node " + type(expr).__name__
-                     + "; simplify the entry or pass a rational approximation and say so")
-
-
-def _arb_of_pow(r: arb, k: int) -> arb:
+def _ball_pow(r: arb, k: int) -> arb:
     out = arb(1)
     for _ in range(abs(k)):
         out = out * r
@@ -633,34 +570,7 @@ def _pos_pow(r: arb, k: int) -> arb:
     lo, hi = r.lower(), r.upper()
     if not lo > 0:
         raise ValueError(f"internal error: _pos_pow needs a positive ball, got {r}")
-    return arb.union(_arb_of_pow(lo, k), _arb_of_pow(hi, k))
-
-
-def _lower(x: arb) -> Fraction | None:
-    if not x.is_finite():
-        return None
-    m, e = x.lower().man_exp()
-    return Fraction(int(m)) * Fraction(2) ** int(e)
-
-
-def _upper(x: arb) -> Fraction | None:
-    if not x.is_finite():
-        return None
-    m, e = x.upper().man_exp()
-    return Fraction(int(m)) * Fraction(2) ** int(e)
-
-
-def _down(x: arb) -> float:
-    """A float ≤ every point of the ball (−inf if the ball is not finite)."""
-    if not x.is_finite():
-        return -math.inf
-    return math.nextafter(float(x.lower()), -math.inf)
-
-
-def _up(x: arb) -> float:
-    if not x.is_finite():
-        return math.inf
-    return math.nextafter(float(x.upper()), math.inf)
+    return arb.union(_ball_pow(lo, k), _ball_pow(hi, k))
 
 
 def _arb_ldl_pd(S: list[list[arb]]) -> tuple[bool, int, str]:
@@ -680,12 +590,12 @@ def _arb_ldl_pd(S: list[list[arb]]) -> tuple[bool, int, str]:
 
 
 def _shifted(Ma: list[list[arb]], lam: Fraction) -> list[list[arb]]:
-    ab = arb(fmpq(lam.numerator, lam.denominator))
+    ab = to_ball(lam)
     return [[v - ab if i == j else v for j, v in enumerate(row)] for i, row in enumerate(Ma)]
 
 
 def _arb_quad(Ma, x) -> arb:
-    xs = [arb(fmpq(c.numerator, c.denominator)) for c in x]
+    xs = [to_ball(c) for c in x]
     n = len(x)
     return sum((xs[i] * Ma[i][j] * xs[j] for i in range(n) for j in range(n) if x[i] and x[j]), arb(0))
 
@@ -730,11 +640,11 @@ def _arb_lambda_min(Ma: list[list[arb]], x_hi, *, steps: int = 120) -> Enclosure
     n = len(Ma)
     # Gershgorin: λ_min ≥ min_i (a_ii − Σ_{j≠i} |a_ij|)
     g = min(Ma[i][i] - sum((abs(Ma[i][j]) for j in range(n) if j != i), arb(0)) for i in range(n))
-    lo = _lower(g) if g.is_finite() else None
+    lo = lower_fraction(g) if g.is_finite() else None
     xs = x_hi
     xx = sum((c * c for c in xs), Fraction(0))
-    ray = _arb_quad(Ma, xs) / arb(fmpq(xx.numerator, xx.denominator))
-    hi = _upper(ray)
+    ray = _arb_quad(Ma, xs) / to_ball(xx)
+    hi = upper_fraction(ray)
     if lo is None or hi is None:
         return Enclosure(lo, hi, point=xs)
     if lo > hi:  # cannot happen for a true enclosure; guard against a bug
@@ -843,7 +753,7 @@ def _exact_pd(A: sympy.Matrix, name: str, what: str, note: str, semidefinite: bo
         margin = _exact_lambda_min(A)
     else:
         with flint.ctx.workprec(128):
-            Ma = [[arb(fmpq(v.numerator, v.denominator)) for v in row] for row in Mq]
+            Ma = [[to_ball(v) for v in row] for row in Mq]
             x = ldl.witness if ldl.witness is not None else _rational_vector(
                 _mp_eigen(Mq, 128)[1], 2**60)
             margin = _arb_lambda_min(Ma, x)
@@ -860,8 +770,12 @@ def _exact_pd(A: sympy.Matrix, name: str, what: str, note: str, semidefinite: bo
                   + f"; λ_min {lam}.")
         return ConditionResult(what, Status.EXACT, margin=margin, detail=detail)
     x = ldl.witness
-    detail = (f"{note}{what} is false: x = ({', '.join(map(str, x))}) gives xᵀ{_paren(name)}x = {_short(ldl.value)}"
-              f"{' < 0' if ldl.value < 0 else ''} (exact); λ_min {lam}.")
+    value = _quad(Mq, x)  # the refutation, rechecked exactly on the input matrix before it is reported
+    if value > 0 or (semidefinite and value == 0) or not any(x):
+        raise RuntimeError(f"internal error: the witness x = {x} gives xᵀ{_paren(name)}x = {value}, which does "
+                           f"not refute {what}")
+    detail = (f"{note}{what} is false: x = ({', '.join(map(str, x))}) gives xᵀ{_paren(name)}x = {_short(value)}"
+              f"{' < 0' if value < 0 else ''} (exact); λ_min {lam}.")
     return ConditionResult(what, Status.FAILED, margin=margin, witness=x, detail=detail)
 
 
@@ -886,9 +800,9 @@ def _describe_margin(m: Enclosure) -> str:
     if m.exact is not None:
         text = str(m.exact)
         text = text if len(text) <= 40 else "an algebraic number (margin.exact)"
-        return f"= {text} ∈ [{_float_down(m.lo):.12g}, {_float_up(m.hi):.12g}]"
-    lo = "−∞" if m.lo is None else f"{_float_down(m.lo):.12g}"
-    hi = "+∞" if m.hi is None else f"{_float_up(m.hi):.12g}"
+        return f"= {text} ∈ [{float_down(m.lo):.12g}, {float_up(m.hi):.12g}]"
+    lo = "−∞" if m.lo is None else f"{float_down(m.lo):.12g}"
+    hi = "+∞" if m.hi is None else f"{float_up(m.hi):.12g}"
     return f"∈ [{lo}, {hi}] (certified)"
 
 
@@ -896,10 +810,10 @@ def _arb_pd(A: sympy.Matrix, name: str, what: str, note: str, semidefinite: bool
     last = None
     for prec in PRECISIONS:
         with flint.ctx.workprec(prec):
-            Ma = [[_arb_of(e) for e in row] for row in A.tolist()]
+            Ma = [[enclose(e, prec=None) for e in row] for row in A.tolist()]
             if not all(v.is_finite() for row in Ma for v in row):
                 raise InputError(f"{name}: an entry has no finite enclosure (got {A}); pass finite real entries")
-            mid = [[_lower(v.mid()) for v in row] for row in Ma]
+            mid = [[lower_fraction(v.mid()) for v in row] for row in Ma]
             lam_est, vec = _mp_eigen(mid, prec)
             x = _rational_vector(vec, 2 ** min(prec // 2, 200))
             pd, k, how = _arb_ldl_pd(Ma)
@@ -926,7 +840,7 @@ def _arb_pd(A: sympy.Matrix, name: str, what: str, note: str, semidefinite: bool
             if negative:
                 margin = _arb_lambda_min(Ma, x)
                 detail = (f"{note}{what} is false: x = ({', '.join(map(str, x))}) gives xᵀ{_paren(name)}x ∈ "
-                          f"[{_down(q):.6g}, {_up(q):.6g}] < 0 (certified, arb at {prec} bits); "
+                          f"[{float_down(q):.6g}, {float_up(q):.6g}] < 0 (certified, arb at {prec} bits); "
                           f"λ_min {_describe_margin(margin)}.")
                 return ConditionResult(what, Status.FAILED, margin=margin, witness=x, detail=detail)
             last = (prec, Ma, x, lam_est)
@@ -991,7 +905,7 @@ class _ArbPoly:
     __slots__ = ("terms",)
 
     def __init__(self, poly: sympy.Poly):
-        self.terms = [(_arb_of(c), m) for m, c in poly.terms() if c != 0]
+        self.terms = [(enclose(c, prec=None), m) for m, c in poly.terms() if c != 0]
 
     def __call__(self, powers: list[list[arb]]) -> arb:
         total = arb(0)
@@ -1033,13 +947,13 @@ class _Face:
         FY, FC = self.F(PY), self.F(PC)
         RYh = _pos_pow(RY, self.h)          # from the endpoints: a wide ball times itself may straddle 0
         natural = FY / RYh
-        gc = FC / _arb_of_pow(RC, self.h)
+        gc = FC / _ball_pow(RC, self.h)
         centred = gc
         RYh1 = _pos_pow(RY, self.h + 1)
         for j in range(m):
             grad = self.dN[j](PY) / RYh1
             centred = centred + grad * arb(0, rads[j])
-        return max(_down(natural), _down(centred)), _up(gc)
+        return max(float_down(natural), float_down(centred)), float_up(gc)
 
 
 def _homogeneity_error(poly: sympy.Poly, name: str) -> str:
@@ -1153,14 +1067,7 @@ def homogeneous_positive_on_sphere(f, variables, *, degree: int | None = None, n
                                      for var, c in zip(variables, x)})
         if v == 0:
             return v, 0
-        for p in PRECISIONS:
-            with flint.ctx.workprec(p):
-                b = _arb_of(v)
-            if b > 0:
-                return v, 1
-            if b < 0:
-                return v, -1
-        return v, None
+        return v, sign_of(v, max_prec=PRECISIONS[-1]).sign
 
     def g_upper(x: tuple) -> Fraction | None:
         """A proved upper bound of f(x/‖x‖) at the rational point x (exact for rational coefficients)."""
@@ -1169,8 +1076,8 @@ def homogeneous_positive_on_sphere(f, variables, *, degree: int | None = None, n
         if rational:
             return v / nrm
         with flint.ctx.workprec(prec):
-            b = _arb_of(v) / arb(fmpq(nrm.numerator, nrm.denominator))
-        return _upper(b)
+            b = enclose(v, prec=None) / to_ball(nrm)
+        return upper_fraction(b)
 
     def failed(x: tuple, how: str) -> ConditionResult:
         v, sign = value_sign(x)
@@ -1204,8 +1111,8 @@ def homogeneous_positive_on_sphere(f, variables, *, degree: int | None = None, n
             margin = Enclosure(v, v, exact=sympy.Rational(v.numerator, v.denominator), point=x)
         else:
             with flint.ctx.workprec(prec):
-                ball = _arb_of(v)
-            margin = Enclosure(_lower(ball), _upper(ball), exact=v, point=x)
+                ball = enclose(v, prec=None)
+            margin = Enclosure(lower_fraction(ball), upper_fraction(ball), exact=v, point=x)
         return ConditionResult(name, Status.EXACT if rational else Status.CERTIFIED, margin=margin,
                                detail=f"one variable: {name}(±1) = {v} > 0.")
 
@@ -1290,10 +1197,10 @@ def homogeneous_positive_on_sphere(f, variables, *, degree: int | None = None, n
     where = f"{boxes} boxes on {n} cube faces, {secs:.2f} s"
     if lower is not None and lower > 0:
         detail = (f"{name} > 0 on the unit sphere (certified, arb branch and bound, {where}): "
-                  f"min {name}|_S ∈ [{_float_down(lower):.8g}, {_float_up(best_hi):.8g}]"
+                  f"min {name}|_S ∈ [{float_down(lower):.8g}, {float_up(best_hi):.8g}]"
                   + (f"; refinement stopped at {stop}" if stop else "") + ".")
         return ConditionResult(name, Status.CERTIFIED, margin=margin, estimate=estimate, detail=detail)
-    lo_s = "−∞" if lower is None else f"{_float_down(lower):.6g}"
+    lo_s = "−∞" if lower is None else f"{float_down(lower):.6g}"
     detail = (f"undecided after {stop} ({where}): the certified lower bound {lo_s} of min {name}|_S is not "
               f"positive and no rational point with {name} ≤ 0 was found (estimated min {estimate.value:.6g}); "
               "raise budget_seconds, or the minimum may be exactly 0 at an irrational point.")
@@ -1615,7 +1522,7 @@ def best_quadratic_upper_bound(M, *, N=None, name: str = "best quadratic bound",
             r = _frac(num / den_)
         else:
             with flint.ctx.workprec(128):
-                r = _lower(_arb_of(num) / _arb_of(den_))
+                r = lower_fraction(enclose(num, prec=None) / enclose(den_, prec=None))
         if r is not None and (lo is None or r > lo):
             lo, lo_pt = r, x
     scale = max(1.0, abs(c_est))
@@ -1628,7 +1535,7 @@ def best_quadratic_upper_bound(M, *, N=None, name: str = "best quadratic bound",
         if res.holds:
             cq = sympy.Rational(cand.numerator, cand.denominator)
             exact = cq if lo == cand else None
-            lo_s = "−∞" if lo is None else (str(lo) if exact is not None else f"{_float_down(lo):.12g}")
+            lo_s = "−∞" if lo is None else (str(lo) if exact is not None else f"{float_down(lo):.12g}")
             detail = (f"best c: Clarabel estimate {c_est:.12g}; rounded up to {cq} and verified "
                       f"({res.status}): cN − M ⪰ 0; the best constant lies in [{lo_s}, {cq}]"
                       + (" (attained: exact)" if exact is not None else "")

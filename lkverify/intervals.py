@@ -445,7 +445,7 @@ def _cosh(x: arb) -> arb:
     a, b = x.lower().cosh(), x.upper().cosh()
     top = _maxpt([a.upper(), b.upper()])
     if x > 0 or x < 0:
-        return -_maxpt([-a.lower(), -b.lower()]) .union(top)
+        return (-_maxpt([-a.lower(), -b.lower()])).union(top)   # [min of the end values, max]
     return _ONE.union(top)
 
 

@@ -47,6 +47,7 @@ import sympy
 from flint import arb
 
 from . import bounds
+from .intervals import enclose, float_down, float_up
 from .results import Result
 from .status import Status
 
@@ -205,10 +206,6 @@ def _faces(model: DecayModel):
         yield v, model.region[v], {u: (sympy.S.Zero, model.region[u]) for u in model.variables if u != v}
 
 
-def _down(x) -> float:
-    return float(arb(x).lower()) if isinstance(x, arb) else x
-
-
 def certify_decay(model: DecayModel, *, c_tilde, lower_coefficients: Mapping, delta_tilde,
                   budget_seconds: float = 60.0, progress: Callable[[str], None] | None = None) -> DecayCertificate:
     """Prove the decay envelope of ``model`` (parameters already substituted) with candidate constants.
@@ -289,25 +286,25 @@ def certify_decay(model: DecayModel, *, c_tilde, lower_coefficients: Mapping, de
     envelopes = []
     if C0 is not None:
         p = model.p
-        ct_a = arb(str(sympy.Rational(ct).p)) / arb(str(sympy.Rational(ct).q))
-        kappa = (arb(str(p - 1)) * ct_a * C0 ** (arb(str(p - 1)))) if p != 1 else ct_a
+        ct_a = enclose(sympy.Rational(ct), prec=None)
+        kappa = (enclose(p - 1, prec=None) * ct_a * C0 ** enclose(p - 1, prec=None)) if p != 1 else ct_a
         names = {v: k for k, v in model.outputs.items()}
-        delta = arb(str(sympy.Rational(dt).p)) / arb(str(sympy.Rational(dt).q))
+        delta = enclose(sympy.Rational(dt), prec=None)
         for out, lv in lower_coefficients.items():
             lv = _q(lv)
-            d = (C0 / (arb(lv.p) / arb(lv.q))).sqrt()
+            d = (C0 / enclose(lv, prec=None)).sqrt()
             name = names[out]
-            constants[name] = float(d.upper())
+            constants[name] = float_up(d)
             h = sympy.Rational(model.region[out])
-            cap = (arb(h.p) / arb(h.q)) / (d if d.upper() >= 1 else arb(1))
-            delta = arb(min(float(delta.lower()), float(cap.lower())))
-            envelopes.append(Envelope(name, float(d.upper()), float(kappa.lower()), float(p)))
-        constants[model.rate_name] = float(kappa.lower()) if p != sympy.Rational(3, 2) else float(kappa.lower())
-        constants["delta_tilde"] = float(delta.lower())
-        constants["C0"] = float(C0.upper())
-        constants["c_tilde"] = float(ct)
+            cap = enclose(h, prec=None) / (d if d.upper() >= 1 else arb(1))
+            delta = arb(min(float_down(delta), float_down(cap)))
+            envelopes.append(Envelope(name, float_up(d), float_down(kappa), float(p)))
+        constants[model.rate_name] = float_down(kappa)
+        constants["delta_tilde"] = float_down(delta)
+        constants["C0"] = float_up(C0)
+        constants["c_tilde"] = float_down(sympy.Rational(ct))
         for out, lv in lower_coefficients.items():
-            constants[f"l_{out}"] = float(_q(lv))
+            constants[f"l_{out}"] = float_down(_q(lv))
     status = Status.CERTIFIED if ok and C0 is not None else (Status.FAILED if failed else Status.UNDECIDED)
     detail = ("every face inequality and C0 proved with arb" if status is Status.CERTIFIED else
               "; ".join(f"{getattr(c, 'name', 'C0')}: {c.status.value}" for c in checks

@@ -484,3 +484,35 @@ def test_lemma1_constant_by_axis_angle():
     assert res.status is Status.CERTIFIED
     assert res.certified >= 4 - 2 * math.sqrt(2)
     assert res.certified <= 1.01 * (4 - 2 * math.sqrt(2))
+
+
+# ---------------------------------------------------------------------------
+# the shared interval layer (lkverify.intervals)
+
+def test_cosh_of_a_wide_ball_away_from_zero_contains_both_end_values():
+    # regression: the wide-ball cosh negated the whole hull, -(min ∪ max), dropping cosh(lo)
+    x = sympy.Symbol("x")
+    f = compile_arb(sympy.cosh(x), [x], gradient=False)
+    for lo, hi in [(-3, -1), (1, 3), (sympy.Rational(-7, 10), sympy.Rational(-1, 5))]:
+        ball = f((lo, hi))
+        small, large = sorted([abs(lo), abs(hi)])
+        assert ball.lower() <= math.cosh(small) * (1 - 1e-12) and ball.upper() >= math.cosh(large) * (1 + 1e-12)
+        assert ball.lower() > 0
+
+
+def test_compile_arb_is_the_shared_converter_at_any_precision():
+    from lkverify.intervals import UnsupportedExpression, enclose, lower_fraction, upper_fraction
+    import flint
+    x, y = sympy.symbols("x y")
+    expr = sympy.atan(x) * sympy.exp(-y) + sympy.sqrt(x ** 2 + 1) - sympy.Rational(1, 3)
+    with flint.ctx.workprec(200):        # constants are enclosed when compiled: compile at 200 bits too
+        ball = compile_arb(expr, [x, y])(sympy.Rational(1, 7), 2)
+    with mpmath.workprec(400):
+        truth = mpmath.atan(mpmath.mpf(1) / 7) * mpmath.exp(-2) + mpmath.sqrt(mpmath.mpf(1) / 49 + 1) - mpmath.mpf(1) / 3
+    ref = enclose(expr, {x: sympy.Rational(1, 7), y: 2}, prec=200)
+    for b in (ball, ref):
+        assert lower_fraction(b) <= sympy.Rational(mpmath.nstr(truth, 120)) + sympy.Rational(1, 10**100)
+        assert upper_fraction(b) >= sympy.Rational(mpmath.nstr(truth, 120)) - sympy.Rational(1, 10**100)
+        assert upper_fraction(b) - lower_fraction(b) < sympy.Rational(1, 2**180)
+    with pytest.raises(UnsupportedExpression, match=r"gamma \(in gamma\(x\)\)"):
+        compile_arb(sympy.gamma(x), [x])

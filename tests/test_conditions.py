@@ -517,3 +517,78 @@ def test_to_json_and_to_result():
     row = res.to_result()
     assert isinstance(row, Result) and row.kind == "hypothesis" and row.status is Status.EXACT
     assert row.value <= 2 / 3
+
+
+# ---------------------------------------------------------------------------------------------
+# near-PD matrices: exact inputs stay exact, refutations are true (rechecked here exactly)
+
+
+def _recheck_refutation(M, res):
+    """The witness of a `failed` must give xᵀMx ≤ 0 exactly (a true counterexample)."""
+    assert res.status is Status.FAILED and res.witness is not None and any(res.witness)
+    value = quad_exact(M, res.witness)
+    assert value.is_number and value <= 0
+    return value
+
+
+def test_near_pd_rational_matrix_with_negative_determinant_fails_with_a_true_witness():
+    e = 1 + R(45, 10**9)
+    M = [[1, e], [e, 1 + R(9, 10**8)]]
+    assert sympy.Matrix(M).det() == -R(81, 4 * 10**16)           # det ≈ −2e-15: not PD
+    res = matrix_positive_definite(M)
+    value = _recheck_refutation(M, res)
+    assert value < 0 and value.is_Rational
+    assert res.margin.hi < 0                                      # λ_min < 0, certified
+
+
+def test_pd_matrix_one_minus_1e_minus_20_is_exact():
+    a = 1 - R(1, 10**20)
+    res = matrix_positive_definite([[1, a], [a, 1]])
+    assert res.status is Status.EXACT and res.holds and res.witness is None
+    assert res.margin.exact == R(1, 10**20) == res.margin.lo       # λ_min = 1 − a exactly
+    # the witness the old float path claimed, x = (−1, 1), gives xᵀMx = 2·10⁻²⁰ > 0
+    assert quad_exact([[1, a], [a, 1]], (Fraction(-1), Fraction(1))) == R(2, 10**20)
+
+
+@pytest.mark.parametrize("shift, status", [(R(1, 10**30), Status.CERTIFIED), (-R(1, 10**30), Status.FAILED)])
+def test_irrational_entries_are_decided_in_arb_with_certified_margins(shift, status):
+    s2 = sympy.sqrt(2)
+    M = [[s2, s2], [s2, s2 + shift]]                               # λ_min ≈ shift/2
+    res = matrix_positive_definite(M)
+    assert res.status is status
+    tol = abs(shift) / 10**6
+    assert res.margin.lo <= shift / 2 + tol and res.margin.hi >= shift / 2 - tol
+    assert res.margin.lo <= res.margin.hi and (res.margin.lo > 0) == (status is Status.CERTIFIED)
+    if status is Status.FAILED:
+        assert sympy.simplify(quad_exact(M, res.witness)) < 0
+
+
+def test_irrational_pd_matrix_margin_encloses_the_exact_lambda_min():
+    s2 = sympy.sqrt(2)
+    res = matrix_positive_definite([[s2, 1], [1, s2]])
+    assert res.status is Status.CERTIFIED
+    lam = s2 - 1
+    assert sympy.Rational(res.margin.lo) <= lam <= sympy.Rational(res.margin.hi)
+    assert res.margin.hi - res.margin.lo < Fraction(1, 10**12)
+
+
+def test_singular_matrix_with_irrational_entries_is_undecided_not_refuted():
+    s2 = sympy.sqrt(2)
+    res = matrix_positive_definite([[1, s2], [s2, 2]])             # λ_min = 0 exactly
+    assert res.status is Status.UNDECIDED and res.witness is None
+    assert res.margin.lo <= 0 <= res.margin.hi
+
+
+@pytest.mark.parametrize("seed", range(30))
+def test_every_refutation_of_a_random_near_singular_matrix_is_true(seed):
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(2, 5))
+    B = sympy.Matrix(n, n - 1, lambda i, j: R(int(rng.integers(-5, 6)), int(rng.integers(1, 4))))
+    eps = R(int(rng.integers(-3, 4)), 10 ** int(rng.integers(8, 25)))
+    M = B * B.T + eps * sympy.eye(n)                                 # rank n−1 plus a tiny shift
+    res = matrix_positive_definite(M)
+    pd = all(M[:k, :k].det() > 0 for k in range(1, n + 1))          # Sylvester, exactly
+    if res.status is Status.FAILED:
+        assert quad_exact(M, res.witness) <= 0 and not pd
+    else:
+        assert res.status is Status.EXACT and pd
