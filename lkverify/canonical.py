@@ -36,6 +36,7 @@ from sympy.polys.orderings import lex
 from sympy.polys.rings import PolyRing
 
 from .budget import Deadline
+from .functional import split_outer
 
 __all__ = ["Canonicalizer", "NormalForms"]
 
@@ -150,11 +151,11 @@ class Canonicalizer:
         return z
 
     def _integral(self, I: sympy.Integral):
-        if len(I.limits) != 1 or len(I.limits[0]) != 3:
-            raise TypeError(f"expected a definite integral in one variable, got {I}")
-        (var, lo, hi), = I.limits
+        var, lo, hi, inner = split_outer(I)
         lo, hi = sympy.expand(lo), sympy.expand(hi)
-        body = sympy.expand(self.atomize(self.normal_expr(I.function, extra_times=(var,))))
+        if lo == hi:  # ∫_a^a = 0 (the upper limit of a double integral gives ∫_t^t)
+            return sympy.S.Zero
+        body = sympy.expand(self.atomize(self.normal_expr(inner, extra_times=(var,))))
         total = sympy.S.Zero
         for mono in sympy.Add.make_args(body):
             inside, outside = [], []
@@ -166,7 +167,16 @@ class Canonicalizer:
                 total += sympy.Mul(*outside) * (hi - lo)
                 continue
             integrand = self.restore(sympy.Mul(*inside))
-            atom = self._atom_for(sympy.Integral(integrand, (var, lo, hi)))
+            # the name of the integration variable does not matter: rename it canonically, to a
+            # symbol that occurs nowhere in the integrand or the limits (free or bound), so that
+            # ∫x(η)²dη and ∫x(ξ)²dξ are one atom and no variable is captured
+            taken = {s.name for s in (integrand.atoms(sympy.Symbol) | lo.atoms(sympy.Symbol)
+                                      | hi.atoms(sympy.Symbol)) if s != var}
+            k = 0
+            while f"_v{k}" in taken:
+                k += 1
+            v = sympy.Symbol(f"_v{k}", real=True)
+            atom = self._atom_for(sympy.Integral(integrand.xreplace({var: v}), (v, lo, hi)))
             total += sympy.Mul(*outside) * atom
         return total
 

@@ -203,7 +203,13 @@ def _prepare(expr, substitution, budget, what: str):
     from .budget import BudgetExceeded, Deadline
 
     expr, floats = _exact_floats(expr)
-    m = apply_substitution(expr, substitution)
+    exact_sub = {}
+    for key, value in substitution.items():
+        if isinstance(value, sympy.Basic) and value.atoms(sympy.Float):
+            value, more = _exact_floats(value)
+            floats = floats | more
+        exact_sub[key] = value
+    m = apply_substitution(expr, exact_sub)
     states = sorted({str(a) for a in m.atoms(AppliedUndef)})
     free = m.free_symbols
     if states or _t in free:

@@ -30,7 +30,7 @@ import dataclasses
 import sympy
 from sympy.core.function import AppliedUndef
 
-from .functional import Functional, outer_integrals
+from .functional import Functional, outer_integrals, split_outer
 from .system import System
 from .symbols import t
 
@@ -191,8 +191,7 @@ def _term_blocks(term, system: System, funcs) -> list[Block]:
         dPdI = sympy.diff(Pt, y)
         if dPdI == 0:
             continue
-        (var, lo, hi), = I.limits
-        g = I.function
+        var, lo, hi, g = split_outer(I)
         dhi, dlo = sympy.diff(hi, t), sympy.diff(lo, t)
         if dhi != 0:
             upper.append(dPdI * g.subs(var, hi) * dhi)

@@ -23,7 +23,7 @@ import sympy
 from .symbols import t, xi, zeta
 from .terms import Term
 
-__all__ = ["Functional", "window_integral", "memory_integral", "tail_integral", "outer_integrals"]
+__all__ = ["Functional", "window_integral", "memory_integral", "tail_integral", "outer_integrals", "split_outer"]
 
 
 def outer_integrals(expr) -> list:
@@ -39,6 +39,35 @@ def outer_integrals(expr) -> list:
 
     walk(expr)
     return list(dict.fromkeys(found))
+
+
+def split_outer(integral: sympy.Integral):
+    """``(var, lower, upper, integrand)`` of the outermost integration of ``integral``.
+
+    SymPy merges ``Integral(Integral(f, (ζ, ξ, t)), (ξ, t − τ, t))`` into one integral
+    with two limits; the outermost is the last one, and its integrand is the integral
+    over the others.
+
+    >>> import sympy
+    >>> from lkverify.symbols import t, xi, zeta
+    >>> f = sympy.Function("f")
+    >>> I = sympy.Integral(sympy.Integral(f(zeta), (zeta, xi, t)), (xi, t - 1, t))
+    >>> split_outer(I)
+    (xi, t - 1, t, Integral(f(zeta), (zeta, xi, t)))
+
+    Raises
+    ------
+    InputError
+        For an indefinite integral (a limit without both ends).
+    """
+    from .errors import InputError
+
+    limits = integral.limits
+    if any(len(limit) != 3 for limit in limits):
+        raise InputError(f"expected definite integrals (both limits given), got {integral}")
+    var, lo, hi = limits[-1]
+    inner = integral.function if len(limits) == 1 else sympy.Integral(integral.function, *limits[:-1])
+    return var, lo, hi, inner
 
 
 def _integrate(integrand, var, lower, upper):

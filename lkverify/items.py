@@ -142,15 +142,19 @@ class Theorem(Item):
         results: list[Result] = []
         progress(f"{self.qualified_name}: hypotheses")
         sub_all = P.substitution(everything)
+        floated_all, floated_given = P.float_symbols(everything), P.float_symbols(given)
         for h in self.hypotheses:
-            results.append(h.evaluate(sub_all, budget=budget))
+            res = h.evaluate(sub_all, budget=budget)
+            results.append(_not_exact_if_floats(res, _symbols_of(h), floated_all))
         details = []
         sub_given = P.substitution(given)
         for k, claim in enumerate(self.claims):
             progress(f"{self.qualified_name}: identity {k + 1}/{len(self.claims)} {claim.name}")
             res = claim.check(sub_given, values=given, budget=budget)
-            results.append(Result("identity", claim.name, res.status, res.to_json(),
-                                  f"{claim.description + ': ' if claim.description else ''}{res.detail}"))
+            results.append(_not_exact_if_floats(
+                Result("identity", claim.name, res.status, res.to_json(),
+                       f"{claim.description + ': ' if claim.description else ''}{res.detail}"),
+                _symbols_of(claim), floated_given))
             if res.differences:
                 details.append(res.as_text())
         return Report(self.qualified_name, {k: _show(v) for k, v in everything.items()}, tuple(results),
@@ -201,6 +205,45 @@ class Theorem(Item):
         links.append(Link("conclusion", Status.EXACT if ready else None,
                           "follows from the links above" if ready else "rests on the links above"))
         return tuple(links)
+
+
+def _symbols_of(statement) -> set:
+    """The symbols and applied functions a hypothesis or claim is written in."""
+    import sympy
+    from sympy.core.function import AppliedUndef
+
+    exprs = []
+    if isinstance(statement, Hypothesis):
+        exprs.append(sympy.sympify(statement.margin))
+    elif isinstance(statement, MatrixHypothesis):
+        exprs += list(sympy.Matrix(statement.matrix))
+    else:
+        terms = list(getattr(statement, "terms", ())) + list(getattr(statement, "lhs", ())) \
+            + list(getattr(statement, "rhs", ()))
+        functional = getattr(statement, "functional", None)
+        if functional is not None:
+            terms += list(functional.terms)
+        for eq in statement.system.equations:
+            terms += list(eq.terms)
+            if eq.mass is not None:
+                exprs += list(eq.mass)
+        exprs += [term.expr for term in terms]
+    out: set = set()
+    for e in exprs:
+        e = sympy.sympify(e)
+        out |= e.free_symbols
+        out |= {a.func for a in e.atoms(AppliedUndef)}
+    return out
+
+
+def _not_exact_if_floats(result: Result, symbols: set, floated: frozenset) -> Result:
+    """An ``exact`` result that rests on a parameter given as a float is only ``certified``."""
+    if result.status is not Status.EXACT or not (symbols & floated):
+        return result
+    names = ", ".join(sorted(str(s) for s in symbols & floated))
+    return dataclasses.replace(result, status=Status.CERTIFIED,
+                               detail=f"{result.detail}; {names} came from floating-point input (taken at the "
+                                      f"exact binary value), so the result is certified, never exact")
 
 
 @dataclasses.dataclass(frozen=True)

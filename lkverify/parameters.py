@@ -325,12 +325,15 @@ class Parameters:
         """
         import difflib
 
-        values: dict[str, object] = {}
+        values = ResolvedValues()
+        floated = set(getattr(given, "from_float", ()))
         for name, value in given.items():
             if name not in self._specs:
                 close = difflib.get_close_matches(name, self.names, n=3)
                 hint = f"; did you mean {', '.join(close)}?" if close else f"; known: {', '.join(self.names)}"
                 raise InputError(f"{name}: no such parameter{hint}")
+            if _has_float(value):
+                floated.add(name)
             values[name] = self._specs[name].check(_coerce(value, name))
         if use_defaults:
             for spec in self._specs.values():
@@ -343,7 +346,19 @@ class Parameters:
                     if sympy.simplify(dot(values[a], values[b])) != 0:
                         raise InputError(f"{a}, {b}: expected orthogonal unit vectors, got {a}·{b} = "
                                          f"{_fmt(sympy.simplify(dot(values[a], values[b])))}")
+        values.from_float = frozenset(floated & set(values))
         return values
+
+    def float_symbols(self, values: Mapping[str, object]) -> frozenset:
+        """The atoms of the parameters whose values came from floating-point numbers.
+
+        A result that depends on them went through floating point and is never ``exact``
+        (see :mod:`lkverify.status`).
+        """
+        out: set = set()
+        for name in getattr(values, "from_float", ()):
+            out.update(self._specs[name].symbols)
+        return frozenset(out)
 
     def substitution(self, values: Mapping[str, object]) -> dict:
         """The atom replacement for checked values (see :meth:`resolve`)."""
@@ -351,6 +366,26 @@ class Parameters:
         for name, value in values.items():
             sub.update(self._specs[name].substitution(value))
         return sub
+
+
+class ResolvedValues(dict):
+    """Checked parameter values by name; ``from_float`` names those given as floats."""
+
+    from_float: frozenset = frozenset()
+
+
+def _has_float(value) -> bool:
+    if isinstance(value, (float, np.floating, sympy.Float)):
+        return True
+    if isinstance(value, (list, tuple)):
+        return any(_has_float(v) for v in value)
+    if isinstance(value, sympy.MatrixBase):
+        return any(isinstance(v, sympy.Float) for v in value)
+    if isinstance(value, np.ndarray):
+        return value.dtype.kind == "f"
+    if isinstance(value, sympy.Basic):
+        return bool(value.atoms(sympy.Float))
+    return False
 
 
 def _coerce(value, name: str = "value"):
@@ -367,8 +402,10 @@ def _coerce(value, name: str = "value"):
         if not np.isfinite(float(value)):
             return sympy.nan
         return sympy.Rational(sympy.Float(value)) if isinstance(value, sympy.Float) else sympy.Rational(float(value))
-    if isinstance(value, sympy.MatrixBase) and any(isinstance(x, sympy.Float) for x in value):
-        return value.applyfunc(lambda x: _coerce(x, name) if isinstance(x, sympy.Float) else x)
+    if isinstance(value, sympy.MatrixBase) and any(x.atoms(sympy.Float) for x in value):
+        return value.applyfunc(lambda x: _coerce(x, name))
+    if isinstance(value, sympy.Basic) and value.atoms(sympy.Float):
+        return value.xreplace({f: sympy.Rational(f) for f in value.atoms(sympy.Float)})
     return value
 
 

@@ -27,7 +27,7 @@ import scipy.integrate
 import sympy
 from sympy.core.function import AppliedUndef
 
-from .functional import outer_integrals
+from .functional import outer_integrals, split_outer
 from .parameters import Kind, Parameters, apply_substitution
 from .states import Frame, Vector
 from .symbols import t
@@ -204,8 +204,8 @@ def _compile(exprs, bound: tuple, histories: dict):
     arg_fns = [(histories[a.func], sympy.lambdify(list(bound), a.args[0], modules="math")) for a in apps]
     quads = []
     for I in ints:
-        (var, lo, hi), = I.limits
-        g = _compile([I.function], bound + (var,), histories)
+        var, lo, hi, inner = split_outer(I)
+        g = _compile([inner], bound + (var,), histories)
         quads.append((g, sympy.lambdify(list(bound), lo, modules="math"),
                       sympy.lambdify(list(bound), hi, modules="math")))
 
