@@ -5,6 +5,14 @@ files) whose module-level :class:`~lkverify.items.Item` objects are its items.
 ``PAPER = "aleksandrov2023"`` names the paper; otherwise the file's stem does.
 The catalogue's proof files ship inside the installed package as
 ``lkverify.proofs`` (the repository's ``proofs/`` folder).
+
+A proof file is Python: loading it executes it with the user's permissions,
+like any script.  Loading is bounded by a time limit (:data:`LOAD_LIMIT_SECONDS`
+unless ``load_limit`` says otherwise; ``lkverify --load-limit``), separate from
+the ``--budget`` of the job run afterwards.  A file that calls ``sys.exit``,
+does not finish loading in time, declares two items with the same name, or
+declares a theorem whose functional or hypotheses use states or symbols its
+system does not have is refused with an :class:`~lkverify.errors.InputError`.
 """
 
 from __future__ import annotations
@@ -17,10 +25,16 @@ import importlib.util
 import sys
 from pathlib import Path
 
+from sympy.core.function import AppliedUndef
+
+from .budget import BudgetExceeded, Deadline
 from .errors import InputError
 from .items import Item
 
-__all__ = ["ProofFile", "load_proof_file", "catalogue", "find_items"]
+__all__ = ["ProofFile", "load_proof_file", "catalogue", "find_items", "LOAD_LIMIT_SECONDS"]
+
+#: default time limit for loading (importing) one proof file, in seconds
+LOAD_LIMIT_SECONDS = 60.0
 
 
 @dataclasses.dataclass(frozen=True)
@@ -37,17 +51,27 @@ def _proofs_dir() -> Path:
     return Path(str(importlib.resources.files("lkverify.proofs")))
 
 
-def load_proof_file(path) -> ProofFile:
-    """Load a proof file by path.
+def load_proof_file(path, *, load_limit: float | None = LOAD_LIMIT_SECONDS) -> ProofFile:
+    """Load a proof file by path (this executes it as Python).
+
+    Parameters
+    ----------
+    path : str or Path
+    load_limit : float or None, keyword-only
+        Seconds the import may take (``None``: no limit); enforced with ``SIGALRM``
+        in the main thread.
 
     Raises
     ------
     InputError
-        If the file does not exist, is not a ``.py`` file, fails to import, or declares no item.
+        If the file does not exist, is not a ``.py`` file, fails to import, calls
+        ``sys.exit`` while loading, does not load within ``load_limit``, declares no
+        item, declares two items with the same name, or declares an inconsistent theorem.
     """
     path = Path(path)
     if not path.is_file():
-        raise InputError(f"{path}: no such file; expected a catalogue name (see `lkverify list`) or a path to a .py proof file")
+        what = "is a directory" if path.is_dir() else "no such file"
+        raise InputError(f"{path}: {what}; expected a catalogue name (see `lkverify list`) or a path to a .py proof file")
     if path.suffix != ".py":
         raise InputError(f"{path}: expected a Python proof file ending in .py")
     digest = hashlib.sha1(str(path.resolve()).encode()).hexdigest()[:10]
@@ -55,34 +79,143 @@ def load_proof_file(path) -> ProofFile:
     if modname in sys.modules:
         module = sys.modules[modname]
     else:
-        spec = importlib.util.spec_from_file_location(modname, path)
-        module = importlib.util.module_from_spec(spec)
-        sys.modules[modname] = module
-        try:
-            spec.loader.exec_module(module)
-        except InputError:
-            del sys.modules[modname]
-            raise
-        except Exception as exc:  # noqa: BLE001 - a user's file failing to import is bad input
-            del sys.modules[modname]
-            raise InputError(f"{path}: the proof file failed to load: {type(exc).__name__}: {exc}") from exc
+        module = _execute(path, modname, load_limit)
     paper = getattr(module, "PAPER", path.stem)
-    items = {}
-    for value in vars(module).values():
-        if isinstance(value, Item) and value.name not in items:
-            value.paper = paper
-            items[value.name] = value
+    items: dict = {}
+    where: dict = {}
+    for var, value in vars(module).items():
+        if not isinstance(value, Item):
+            continue
+        if value.name in items:
+            if items[value.name] is value:
+                continue  # the same item under two variable names
+            del sys.modules[modname]
+            raise InputError(f"{path}: two items are named {value.name!r} (variables {where[value.name]} and "
+                             f"{var}); expected one name per item; rename one of them")
+        value.paper = paper
+        items[value.name] = value
+        where[value.name] = var
     if not items:
+        del sys.modules[modname]
         raise InputError(f"{path}: declares no item; expected module-level Theorem objects")
+    for item in items.values():
+        problem = _inconsistency(item)
+        if problem:
+            del sys.modules[modname]
+            raise InputError(f"{path}: item {item.name}: {problem}")
     return ProofFile(paper, path, items, (module.__doc__ or "").strip())
 
 
-def catalogue() -> list[ProofFile]:
+def _one_line(text: str) -> str:
+    return " ".join(str(text).split())
+
+
+def _execute(path: Path, modname: str, load_limit: float | None):
+    """Import the file as module ``modname`` within the time limit; every failure is an InputError."""
+    spec = importlib.util.spec_from_file_location(modname, path)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[modname] = module
+    limit = Deadline(load_limit)
+    try:
+        with limit.enforced():
+            spec.loader.exec_module(module)
+    except InputError as exc:
+        del sys.modules[modname]
+        raise InputError(_one_line(exc)) from exc
+    except BudgetExceeded:
+        del sys.modules[modname]
+        raise InputError(f"{path}: the proof file did not finish loading within the load limit of "
+                         f"{load_limit:g} s (an endless loop or a long computation at import?); expected a "
+                         f"file that only declares items; raise the limit with --load-limit SECONDS") from None
+    except SystemExit as exc:
+        del sys.modules[modname]
+        raise InputError(f"{path}: the proof file called sys.exit({exc.code!r}) while loading; expected a file "
+                         f"that only declares items; remove the exit call (or guard it with "
+                         f"if __name__ == \"__main__\")") from None
+    except Exception as exc:  # noqa: BLE001 - a user's file failing to import is bad input
+        del sys.modules[modname]
+        raise InputError(f"{path}: the proof file failed to load: {type(exc).__name__}: {_one_line(exc)}") from exc
+    return module
+
+
+def _inconsistency(item) -> str | None:
+    """Why a theorem cannot be checked as declared (states or symbols its system lacks), else None."""
+    import sympy
+
+    from .symbols import t as t_sym
+
+    system = getattr(item, "system", None)
+    if system is None or not hasattr(system, "state_functions"):
+        return None
+    funcs = system.state_functions()
+    params = system.parameters
+    declared = set()
+    for spec in params:
+        declared |= {s for s in spec.symbols if isinstance(s, sympy.Symbol)}
+    pairs = [("its functional", getattr(item, "functional", None), system)]
+    pairs += [(f"the functional of claim {c.name!r}", getattr(c, "functional", None), getattr(c, "system", None))
+              for c in getattr(item, "claims", ())]
+    for what, functional, sys_ in pairs:
+        problem = _foreign_states(what, functional, sys_)
+        if problem:
+            return problem
+    for h in getattr(item, "hypotheses", ()):
+        margin = getattr(h, "margin", None)
+        if margin is None:
+            margin = getattr(h, "matrix", None)
+        try:
+            expr = sympy.sympify(margin)
+        except (sympy.SympifyError, TypeError):
+            continue
+        atoms = expr.atoms(AppliedUndef) if isinstance(expr, sympy.Basic) else set()
+        states = sorted({str(a.func) for a in atoms if a.func in funcs})
+        if states:
+            return (f"hypothesis {h.name!r} depends on the state component(s) {', '.join(states)}; expected a "
+                    f"condition on the parameters only (a hypothesis is checked once, not along a trajectory); "
+                    f"move it into a claim or a bound step")
+        free = expr.free_symbols if isinstance(expr, sympy.Basic) else set()
+        if t_sym in free:
+            return (f"hypothesis {h.name!r} depends on the time t; expected a condition on the constant "
+                    f"parameters only; state a condition on a time-varying coefficient for every t in a claim")
+        undeclared = sorted(str(s) for s in free - declared
+                            if not any(s in getattr(i, "variables", ()) for i in expr.atoms(sympy.Integral)))
+        if undeclared:
+            return (f"hypothesis {h.name!r} uses the undeclared symbol(s) {', '.join(undeclared)}; expected only "
+                    f"parameters of the system ({', '.join(params.names) or 'none declared'}); declare them "
+                    f"with Parameters().scalar(...) or use a declared parameter")
+    return None
+
+
+def _foreign_states(what: str, functional, system) -> str | None:
+    """Why ``functional`` uses a state function that ``system`` does not have, else None."""
+    import sympy
+
+    if functional is None or system is None or not hasattr(system, "state_functions"):
+        return None
+    expr = functional.expr
+    if not isinstance(expr, sympy.Basic):
+        return None
+    funcs = system.state_functions()
+    foreign = sorted({str(a.func) for a in expr.atoms(AppliedUndef)
+                      if a.func not in funcs and not _is_parameter_function(a.func, system.parameters)})
+    if not foreign:
+        return None
+    states = ", ".join(s.name for s in system.states)
+    return (f"{what} uses {', '.join(foreign)}, which its system does not have (the system's states: {states}); "
+            f"expected a functional of the system's states; add the state to the system or use one of its states")
+
+
+def _is_parameter_function(func, params) -> bool:
+    return any(func in spec.symbols for spec in params)
+
+
+def catalogue(*, load_limit: float | None = LOAD_LIMIT_SECONDS) -> list[ProofFile]:
     """Every proof file shipped with lkverify, in name order."""
-    return [load_proof_file(p) for p in sorted(_proofs_dir().glob("*.py")) if p.name != "__init__.py"]
+    return [load_proof_file(p, load_limit=load_limit) for p in sorted(_proofs_dir().glob("*.py"))
+            if p.name != "__init__.py"]
 
 
-def find_items(spec: str) -> list[Item]:
+def find_items(spec: str, *, load_limit: float | None = LOAD_LIMIT_SECONDS) -> list[Item]:
     """Items named by ``spec``: ``paper.item``, ``paper`` (all its items), a path, or ``path.py::item``.
 
     Raises
@@ -92,13 +225,13 @@ def find_items(spec: str) -> list[Item]:
     """
     path_part, _, item_part = spec.partition("::")
     if path_part.endswith(".py") or "/" in path_part or Path(path_part).is_file():
-        pf = load_proof_file(path_part)
+        pf = load_proof_file(path_part, load_limit=load_limit)
         if item_part:
             if item_part not in pf.items:
                 raise InputError(f"{spec}: no item {item_part!r} in {path_part}; it has {', '.join(pf.items)}")
             return [pf.items[item_part]]
         return list(pf.items.values())
-    files = catalogue()
+    files = catalogue(load_limit=load_limit)
     names = {f"{pf.paper}.{n}": it for pf in files for n, it in pf.items.items()}
     if spec in names:
         return [names[spec]]

@@ -11,6 +11,11 @@ A proof module attaches a :class:`ConstantsJob` to an item.  The job
    until the proof goes through or the budget is spent;
 3. optionally cross-checks the envelope against simulated trajectories.
 
+The whole job honours one time budget (``budget`` seconds, ``lkverify constants
+--budget``): each phase gets what is left of it, and the job is interrupted
+(``SIGALRM``, :meth:`lkverify.budget.Deadline.enforced`) when it runs out; what
+was finished is reported, the rest is ``undecided`` with the phase that was cut.
+
 Every number in the report carries its status; a certified constant is compared
 with the paper's value when the paper prints one.
 """
@@ -24,6 +29,7 @@ from collections.abc import Callable, Mapping, Sequence
 import sympy
 
 from . import bounds
+from .budget import BudgetExceeded, Deadline
 from .region import DecayCertificate, DecayModel, certify_decay, estimate_decay, search_parameters, tighten
 from .results import Report, Result
 from .status import Status
@@ -94,31 +100,62 @@ class ConstantsJob:
     def run(self, item_name: str, values: Mapping, shown: Mapping, *, budget: float = 120.0,
             progress: Callable[[str], None] | None = None, seed: int = 0,
             goal: str | None = None) -> tuple[Report, dict]:
+        """Compute and certify the constants within ``budget`` seconds (the whole job).
+
+        Returns
+        -------
+        (Report, dict)
+            The report (``undecided`` results when the budget ran out) and the data
+            for the figure.
+
+        Raises
+        ------
+        InputError
+            An unknown goal, or values outside the hypotheses the model rests on.
+        """
         from .errors import InputError
 
-        say = progress or (lambda msg: None)
-        start = time.monotonic()
-        results: list[Result] = []
         if isinstance(self.objective, Mapping):
-            goal = goal or next(iter(self.objective))
-            if goal not in self.objective:
+            if goal is not None and goal not in self.objective:
                 raise InputError(f"--goal: expected one of {', '.join(self.objective)}, got {goal}")
-            objective = self.objective[goal]
-        else:
-            if goal not in (None, "default"):
-                raise InputError(f"--goal: this item has a single goal, got {goal}")
-            objective = self.objective
-
+        elif goal not in (None, "default"):
+            raise InputError(f"--goal: this item has a single goal (default), got {goal}; drop --goal")
         if self.applies is not None:
             why = self.applies(values)
             if why:  # outside the hypotheses the derivation rests on: bad input, not a result
                 raise InputError(f"{item_name}: {why}")
+        deadline = Deadline(budget)
+        results: list[Result] = []
+        phase = ["starting"]
+        try:
+            with deadline.enforced():
+                return self._run(item_name, values, shown, deadline=deadline, results=results, phase=phase,
+                                 progress=progress, seed=seed, goal=goal)
+        except BudgetExceeded:
+            pass
+        results.append(Result("region", "budget", Status.UNDECIDED, {"budget": budget, "phase": phase[0]},
+                              f"time budget of {budget:g} s ran out during {phase[0]} (after "
+                              f"{deadline.elapsed:.1f} s); raise --budget to finish"))
+        return Report(item_name, dict(shown), tuple(results),
+                      f"undecided: the time budget of {budget:g} s ran out during {phase[0]}"), {}
+
+    def _run(self, item_name, values, shown, *, deadline: Deadline, results: list, phase: list, progress, seed,
+             goal) -> tuple[Report, dict]:
+        say = progress or (lambda msg: None)
+        budget = deadline.seconds
+        start = deadline.start
+        if isinstance(self.objective, Mapping):
+            objective = self.objective[goal or next(iter(self.objective))]
+        else:
+            objective = self.objective
         consts = {}
-        for tpl in self.templates:
+        for k, tpl in enumerate(self.templates):
+            phase[0] = f"the template constant {tpl.name}"
             say(f"{item_name}: constant {tpl.name} = sup {tpl.text}")
+            # half the budget for the templates, shared by those still to do
+            share = (0.5 * budget - deadline.elapsed) / (len(self.templates) - k)
             res = bounds.sup_bound(tpl.expr(values), tpl.box(values), rel_gap=5e-3, budget_boxes=40_000,
-                                   enclosure="mean-value",
-                                   budget_seconds=max(5.0, budget / (2 * max(1, len(self.templates)))))
+                                   enclosure="mean-value", budget_seconds=max(share, 1e-3))
             # The upper bound is proved whenever it is finite, even if the accuracy target
             # (the gap to the estimate) was not reached within the budget.
             proved = res.certified is not None and res.certified < float("inf")
@@ -135,11 +172,12 @@ class ConstantsJob:
                                    "maximiser": res.maximiser, "boxes": res.boxes}, detail))
         if any(r.status is not Status.CERTIFIED for r in results if r.name in consts):
             return Report(item_name, dict(shown), tuple(results),
-                          "undecided: a template constant was not certified"), consts
+                          "undecided: a template constant was not certified" + _spent(deadline, budget)), consts
         build = self.model(values, consts)
         extra_points: list = []
         cert = None
         for round_ in range(5):  # search, certify; a refuted point joins the samples of the next search
+            phase[0] = f"the search of the free parameters (round {round_ + 1})"
             say(f"{item_name}: searching the free parameters {', '.join(self.free)} (estimated)")
             params, est = search_parameters(build, self.free, objective=objective, seed=seed + round_,
                                             extra_points=extra_points)
@@ -158,12 +196,13 @@ class ConstantsJob:
             dt = sympy.Rational(est["delta_tilde"]).limit_denominator(10**6)
             infeasible = False
             for attempt in range(6):
-                remaining = budget - (time.monotonic() - start)
-                if remaining <= 5:
+                remaining = deadline.remaining
+                if remaining <= 0:
                     break
+                phase[0] = f"the certification (round {round_ + 1}, attempt {attempt + 1})"
                 say(f"{item_name}: certifying (round {round_ + 1}, attempt {attempt + 1}, c̃ = {float(ct):.5g})")
                 cert = certify_decay(model, c_tilde=ct, lower_coefficients=ls, delta_tilde=dt,
-                                     budget_seconds=min(remaining - 2, 60.0), progress=say)
+                                     budget_seconds=min(remaining, 60.0), progress=say)
                 if cert.status is Status.CERTIFIED:
                     break
                 if cert.counterexamples:  # counterexample-guided: lower the refuted candidates
@@ -182,7 +221,7 @@ class ConstantsJob:
             results.append(Result("region", "parameters", Status.UNDECIDED, None,
                                   "the search found no parameters for which the final inequalities hold on the "
                                   "sampled region (not a proof that none exist)"))
-            return Report(item_name, dict(shown), tuple(results), "undecided: no admissible parameters found"), consts
+            return Report(item_name, dict(shown), tuple(results), "undecided: no admissible parameters found" + _spent(deadline, budget)), consts
         for k, v in params.items():
             results.append(Result("region", k, Status.ESTIMATED, float(v),
                                   f"free parameter chosen by the search (exact value {v} used in the proof)"))
@@ -190,12 +229,14 @@ class ConstantsJob:
             results.append(Result("region", "certificate", cert.status, None, cert.detail))
         if cert is None:
             results.append(Result("region", "certificate", Status.UNDECIDED, None, "budget spent before certifying"))
-            return Report(item_name, dict(shown), tuple(results), "undecided: budget spent"), consts
+            return Report(item_name, dict(shown), tuple(results),
+                          "undecided: no certificate" + (_spent(deadline, budget) or " (every attempt failed)")), consts
         results += cert.results(self.paper, self.descriptions)
         for env in cert.envelopes:
             results.append(Result("envelope", f"envelope {env.name}", cert.status,
                                   {"d": env.d, "rate": env.kappa, "p": env.p}, env.text()))
         if cert.status is Status.CERTIFIED and self.cross_check is not None:
+            phase[0] = "the simulations cross-checking the envelope"
             say(f"{item_name}: simulating histories inside the proved region")
             checked = self.cross_check(values, cert)
             curves = {}
@@ -243,6 +284,11 @@ def _fmt_point(p) -> str:
     return "(" + ", ".join(f"{k}={v:.4g}" for k, v in p.items()) + ")"
 
 
+def _spent(deadline, budget) -> str:
+    """`` (the time budget of B s ran out)`` when it did, else ``""``."""
+    return f" (the time budget of {budget:g} s ran out)" if deadline.expired else ""
+
+
 def _verdict(results, paper, cert: DecayCertificate) -> str:
     bad = [r.name for r in results if r.status in (Status.FAILED, Status.UNDECIDED)]
     if bad:
@@ -254,4 +300,6 @@ def _verdict(results, paper, cert: DecayCertificate) -> str:
             continue
         better = v <= pv if k in ("d1", "d2") else v >= pv
         cmp.append(f"{k} {'≤' if k in ('d1', 'd2') else '≥'} paper: {'yes' if better else 'no'}")
-    return "certified constants and envelope" + (f" ({'; '.join(cmp)})" if cmp else "")
+    return ("certified constants and envelope for the proof module's bound templates" + (f" ({'; '.join(cmp)})" if cmp else "")
+            + "; not established: the templates (V ≥ L, V ≤ U, V̇ ≤ W) are declared by the proof module, not yet "
+              "checked against the derived V and V̇ (bound steps)")

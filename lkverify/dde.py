@@ -29,9 +29,11 @@ Method
   the propagation order ``discontinuity_order``; beyond it the solution is smooth
   enough for the error control.
 * Numerical trouble is an :class:`Outcome`, never an exception: ``DIVERGED``
-  (non-finite values, or ``‖y‖`` above ``divergence_bound``) and
-  ``STEP_COLLAPSE`` (the SciPy solver failed), each with the time.  Bad arguments
-  raise :class:`~lkverify.errors.InputError`.
+  (non-finite values, or ``‖y‖`` above ``divergence_bound``, or steps collapsing
+  while ``‖y‖`` grows: a blow-up), ``STEP_COLLAPSE`` (the SciPy solver failed, or
+  the mean of the last :data:`FLOOR_WINDOW` steps fell below ``min_mean_step``:
+  stiff) and ``BUDGET`` (the ``deadline`` passed), each with the time.  Bad
+  arguments raise :class:`~lkverify.errors.InputError`.
 
 Examples
 --------
@@ -70,6 +72,10 @@ _METHODS = {"DOP853": DOP853, "RK45": RK45}
 _DEGREE = {"DOP853": 7, "RK45": 4}          # degree of the dense-output polynomial
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(8)   # 8 Gauss–Legendre nodes: exact to degree 15
 _SMALL_BATCH = 16                           # up to this many points: batched matmul, else Horner
+#: number of accepted steps whose mean is compared with ``min_mean_step``
+FLOOR_WINDOW = 200
+#: a step collapse with ‖y‖ grown by this factor over its initial size (at least 1) is reported as a blow-up
+BLOWUP_GROWTH = 1e3
 
 
 class Outcome(str, enum.Enum):
@@ -84,6 +90,7 @@ class Outcome(str, enum.Enum):
     SUCCESS = "success"
     DIVERGED = "diverged"
     STEP_COLLAPSE = "step_collapse"
+    BUDGET = "budget"
 
     def __str__(self) -> str:
         return self.value
@@ -652,7 +659,8 @@ def solve_dde(fun: Callable, t_span: tuple[float, float], history, *, lags: Sequ
               first_step: float | None = None, divergence_bound: float = 1e8,
               discontinuity_order: int = 4, t_eval=None, resync: Callable | None = None,
               monitors: Sequence[Callable] | Mapping[str, Callable] = (),
-              progress: Callable | None = None) -> DDESolution:
+              progress: Callable | None = None, deadline=None,
+              min_mean_step: float | None = None) -> DDESolution:
     """Integrate ``y'(t) = fun(t, y(t), Z(t), past)`` with constant lags by the method of steps.
 
     Parameters
@@ -698,12 +706,23 @@ def solve_dde(fun: Callable, t_span: tuple[float, float], history, *, lags: Sequ
         (after ``resync``); named by the mapping keys or the functions' names.
     progress : callable, optional
         ``progress(fraction)`` with fraction in (0, 1], called at most 100 times.
+    deadline : lkverify.budget.Deadline, optional
+        Checked after every accepted step; once it has passed the run ends with
+        ``Outcome.BUDGET`` at the time reached (the solution so far is kept).
+    min_mean_step : float, optional
+        The step floor: when the mean length of the last :data:`FLOOR_WINDOW`
+        accepted steps falls below it, the run ends: ``Outcome.DIVERGED`` (a
+        blow-up) if ``‖y‖`` has grown :data:`BLOWUP_GROWTH`-fold over
+        ``max(1, ‖y(t0)‖)``, else ``Outcome.STEP_COLLAPSE`` (stiff: an explicit
+        method cannot take steps of the system's time scale).
 
     Returns
     -------
     DDESolution
         Numerical trouble is reported in ``outcome`` (``DIVERGED`` / ``STEP_COLLAPSE``
-        with ``t_fail``), never raised.  Exceptions raised by ``fun`` propagate.
+        / ``BUDGET`` with ``t_fail``), never raised.  Arithmetic errors raised by
+        ``fun`` (ZeroDivisionError, OverflowError) count as non-finite values; other
+        exceptions raised by ``fun`` propagate.
 
     Raises
     ------
@@ -744,17 +763,26 @@ def solve_dde(fun: Callable, t_span: tuple[float, float], history, *, lags: Sequ
     nfev = 0
     bad_t = None            # first time fun returned non-finite values since the last accepted step
 
+    def call(t, y, Z):
+        try:
+            return np.asarray(fun(t, y, Z, past), dtype=float)
+        except (ZeroDivisionError, OverflowError, FloatingPointError):
+            return np.full(n, np.nan)
+
     def rhs(t, y):
         nonlocal nfev, bad_t
         nfev += 1
         Z = lookup(t - lag_arr, t - lag_max) if nlag else Z_empty
-        f = np.asarray(fun(t, y, Z, past), dtype=float)
+        f = call(t, y, Z)
         if bad_t is None and not np.isfinite(f).all():
             bad_t = t
         return f
 
-    f0 = np.asarray(fun(t0, y0.copy(), lookup(t0 - lag_arr, t0 - lag_max) if nlag else Z_empty, past), dtype=float)
+    f0 = call(t0, y0.copy(), lookup(t0 - lag_arr, t0 - lag_max) if nlag else Z_empty)
     nfev += 1
+    if f0.shape == (n,) and not np.isfinite(f0).all():
+        raise InputError(f"fun: the right-hand side is not finite at t0={t0:g} (got {f0.tolist()}); expected "
+                         f"finite values at the initial state; check coefficients and the history at t0")
     if f0.shape != (n,):
         raise InputError(f"fun: expected fun(t0, y, Z, past) to return shape ({n},) like the history phi(t0), "
                          f"got {f0.shape}; return every state component (auxiliary states included) or fix the history")
@@ -768,6 +796,9 @@ def solve_dde(fun: Callable, t_span: tuple[float, float], history, *, lags: Sequ
     outcome, message, t_fail = Outcome.SUCCESS, "", None
     t, y = t0, y0.copy()
     h_next = None if first_step is None else float(first_step)
+    floor = None if min_mean_step is None else float(min_mean_step)
+    recent = np.zeros(FLOOR_WINDOW)        # lengths of the last accepted steps (ring buffer)
+    y_scale = max(1.0, float(np.linalg.norm(y0)))
 
     if not float(np.dot(y0, y0)) <= bound * bound:
         outcome, t_fail = Outcome.DIVERGED, t0
@@ -814,6 +845,30 @@ def solve_dde(fun: Callable, t_span: tuple[float, float], history, *, lags: Sequ
                     t_fail = _crossing(past, ta, t, bound)
                     message = (f"y became non-finite at t={t:.10g}" if not np.isfinite(y).all() else
                                f"‖y‖ exceeded divergence_bound={bound:g} at t={t_fail:.10g}")
+                    break
+                if floor is not None:
+                    recent[past._m % FLOOR_WINDOW] = t - ta
+                    if past._m >= FLOOR_WINDOW and recent.mean() < floor:
+                        t_fail = t
+                        mean = float(recent.mean())
+                        ny = float(np.sqrt(yy))
+                        if ny > BLOWUP_GROWTH * y_scale:
+                            outcome = Outcome.DIVERGED
+                            message = (f"blow-up at t≈{t:.6g}: ‖y‖ grew to {ny:.3g} (from {np.linalg.norm(y0):.3g}) "
+                                       f"while the steps shrank to {mean:.3g} on average, below the floor "
+                                       f"{floor:.3g}")
+                        else:
+                            outcome = Outcome.STEP_COLLAPSE
+                            message = (f"steps collapsed at t={t:.6g}: the last {FLOOR_WINDOW} steps average "
+                                       f"{mean:.3g}, below the floor {floor:.3g}; at this step size t_end={t_end:g} "
+                                       f"needs about {(t_end - t) / mean:.2g} more steps (a stiff system: an "
+                                       f"explicit method needs steps of its fastest time scale; or a t_end too "
+                                       f"long for the system's time scale)")
+                        break
+                if deadline is not None and deadline.expired:
+                    outcome, t_fail = Outcome.BUDGET, t
+                    message = (f"{deadline.message()} at t={t:.6g} of t_end={t_end:g} after {past._m} steps; "
+                               f"the run is incomplete (raise --budget, or shorten --t-end)")
                     break
                 # the step size before a landing step truncated at the target is the better restart guess
                 h_abs = float(getattr(solver, "h_abs", solver.step_size))

@@ -16,15 +16,19 @@ from collections.abc import Callable, Mapping, Sequence
 
 import numpy as np
 
+from .budget import Deadline
 from .envelope import EnvelopeCheck, cross_check
 from .items import Item
 from .results import Report, Result
-from .simulate import Trajectory, simulate
+from .simulate import MAX_STEPS, Trajectory, check_simulation, simulate
 from .status import Status
 from .system import System
 
+#: default time budget of ``lkverify simulate`` (all runs of an example together), seconds
+DEFAULT_SIMULATE_BUDGET = 600.0
+
 __all__ = ["Run", "Series", "Example", "RunSummary", "Converges", "DoesNotConverge", "BoundedNotAttractive",
-           "FasterThan", "SmootherThan", "Sensitive", "EnvelopeSpec"]
+           "FasterThan", "SmootherThan", "Sensitive", "EnvelopeSpec", "DEFAULT_SIMULATE_BUDGET", "MAX_STEPS"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -132,14 +136,31 @@ class Example(Item):
         self.plot_until = plot_until
 
     # -- simulation ------------------------------------------------------------------------
+    def prepare(self, values: Mapping | None = None, *, t_end: float | None = None,
+                histories: Mapping | None = None) -> None:
+        """Check every run before integrating any (values, coefficients on the horizon, histories, step floor).
+
+        Raises
+        ------
+        InputError
+            The first problem found, in one line.
+        """
+        t_end = self.t_end if t_end is None else float(t_end)
+        for run in self.runs:
+            check_simulation(run.system, history={**dict(run.history), **dict(histories or {})}, t_end=t_end,
+                             values={**dict(run.values), **dict(values or {})})
+
     def simulate(self, values: Mapping | None = None, *, t_end: float | None = None,
                  histories: Mapping | None = None, progress: Callable[[str], None] | None = None,
-                 fraction: Callable | None = None) -> dict[str, Trajectory]:
+                 fraction: Callable | None = None, deadline: Deadline | None = None) -> dict[str, Trajectory]:
         """Integrate every run.
 
         User ``values`` override the runs' parameter values and ``histories`` their
         initial histories (state name → constant vector); ``fraction(label)`` may
         return a callable receiving the fraction of each run done (a progress bar).
+        ``deadline`` is shared by the runs: once it has passed, the current run stops
+        with outcome ``budget`` and later runs are not started (outcome ``budget``,
+        no samples beyond t0).
         """
         t_end = self.t_end if t_end is None else float(t_end)
         out = {}
@@ -151,7 +172,7 @@ class Example(Item):
             t_eval = np.linspace(0.0, t_end, self.samples)
             out[run.label] = simulate(run.system, history=hist, t_end=t_end, values=vals, rtol=self.rtol,
                                       atol=self.atol, t_eval=t_eval,
-                                      progress=fraction(run.label) if fraction else None)
+                                      progress=fraction(run.label) if fraction else None, deadline=deadline)
         return out
 
     def summary(self, label: str, tr: Trajectory) -> RunSummary:
@@ -176,25 +197,52 @@ class Example(Item):
             progress: Callable[[str], None] | None = None, envelope: bool = True,
             trajectories: Mapping[str, Trajectory] | None = None) -> Report:
         """Simulate, summarise every run and check every claim."""
-        trajectories = trajectories or self.simulate(values, t_end=t_end, progress=progress)
+        if trajectories is None:
+            trajectories = self.simulate(values, t_end=t_end, progress=progress,
+                                         deadline=Deadline(budget) if budget is not None else None)
         results = []
+        cut = {}
         for label, tr in trajectories.items():
             s = self.summary(label, tr)
             ok = s.outcome == "success"
-            detail = (f"{s.outcome}; {'converged' if s.converged else 'not converged'}: distance {s.final_distance:.3g} "
-                      f"at t = {s.t_end:g}; reaches 1e-2 at {_fmt(s.t_1e2)}, 1e-3 at {_fmt(s.t_1e3)}")
-            results.append(Result("simulation", f"run {label}", Status.SIMULATED if ok else Status.FAILED,
-                                  s.to_json(), detail))
+            if s.outcome in ("budget", "step_collapse"):  # not integrated to the end: nothing observed
+                cut[label] = tr
+                status = Status.UNDECIDED
+                detail = f"undecided ({s.outcome}): {tr.message}; distance {s.final_distance:.3g} at t = {s.t_end:g}"
+            elif not ok:
+                status = Status.FAILED
+                when = f" at t = {tr.t_fail:.6g}" if tr.t_fail is not None else ""
+                detail = f"{s.outcome}{when}: {tr.message}"
+            else:
+                status = Status.SIMULATED
+                detail = (f"{s.outcome}; {'converged' if s.converged else 'not converged'}: distance "
+                          f"{s.final_distance:.3g} at t = {s.t_end:g}; reaches 1e-2 at {_fmt(s.t_1e2)}, "
+                          f"1e-3 at {_fmt(s.t_1e3)}")
+            value = s.to_json()
+            value["t_fail"] = tr.t_fail
+            value["message"] = tr.message
+            results.append(Result("simulation", f"run {label}", status, value, detail))
         for claim in self.claims:
+            if cut:
+                results.append(Result("simulation", claim.name, Status.UNDECIDED, None,
+                                      f"not checked: run(s) {', '.join(cut)} stopped before t_end "
+                                      f"({', '.join(sorted({tr.outcome.value for tr in cut.values()}))})"))
+                continue
             results.append(claim.check(self, trajectories))
-        if envelope and self.envelope is not None:
+        if envelope and self.envelope is not None and cut:
+            results.append(Result("envelope", self.envelope.label, Status.UNDECIDED, None,
+                                  "not checked: a run stopped before t_end (time budget or step floor)"))
+        elif envelope and self.envelope is not None:
             chk = self.check_envelope(trajectories)
             detail = (f"max trajectory/envelope = {chk.max_ratio:.4g} at t = {chk.t_max_ratio:.4g}"
                       + (f"; first violation at t = {chk.first_violation:.4g}" if chk.first_violation is not None
                          else "; no violation at the samples"))
             results.append(Result("envelope", chk.name, chk.status, chk.to_json(), detail))
         failed = [r.name for r in results if r.status is Status.FAILED]
+        undecided = [r.name for r in results if r.status is Status.UNDECIDED]
         verdict = (f"failed: {', '.join(failed)}" if failed else
+                   f"undecided: a run stopped before t_end (time budget or step floor): {', '.join(undecided)}"
+                   if undecided else
                    f"every claim observed along the simulated trajectories (status simulated: observed, not proved)")
         params = {k: str(v) for k, v in (values or {}).items()}
         return Report(self.qualified_name, params, tuple(results), verdict)

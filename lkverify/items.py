@@ -135,7 +135,10 @@ class Theorem(Item):
         InputError
             Unknown parameter names or inadmissible values.
         """
+        from .budget import Deadline
+
         progress = progress or (lambda msg: None)
+        deadline = Deadline(budget)  # one budget for the whole run: hypotheses and every claim
         P = self.parameters
         given = P.resolve(values or {}, use_defaults=False)
         everything = P.resolve(values or {}, use_defaults=True)
@@ -144,13 +147,17 @@ class Theorem(Item):
         sub_all = P.substitution(everything)
         floated_all, floated_given = P.float_symbols(everything), P.float_symbols(given)
         for h in self.hypotheses:
-            res = h.evaluate(sub_all, budget=budget)
+            res = h.evaluate(sub_all, budget=_left(deadline))
             results.append(_not_exact_if_floats(res, _symbols_of(h), floated_all))
         details = []
         sub_given = P.substitution(given)
         for k, claim in enumerate(self.claims):
             progress(f"{self.qualified_name}: identity {k + 1}/{len(self.claims)} {claim.name}")
-            res = claim.check(sub_given, values=given, budget=budget)
+            if deadline.expired:
+                results.append(Result("identity", claim.name, Status.UNDECIDED, None,
+                                      f"not checked: the time budget of {budget:g} s was spent before this claim"))
+                continue
+            res = claim.check(sub_given, values=given, budget=_left(deadline))
             results.append(_not_exact_if_floats(
                 Result("identity", claim.name, res.status, res.to_json(),
                        f"{claim.description + ': ' if claim.description else ''}{res.detail}"),
@@ -205,6 +212,12 @@ class Theorem(Item):
         links.append(Link("conclusion", Status.EXACT if ready else None,
                           "follows from the links above" if ready else "rests on the links above"))
         return tuple(links)
+
+
+def _left(deadline):
+    """The seconds left of a deadline (None: unlimited), never below a millisecond."""
+    r = deadline.remaining
+    return None if r is None else max(r, 1e-3)
 
 
 def _symbols_of(statement) -> set:

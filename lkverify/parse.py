@@ -178,10 +178,13 @@ def _max_abs_rational(expr: sympy.Basic) -> int:
 class _Evaluator:
     """Walk a whitelisted expression tree and build the SymPy value."""
 
-    def __init__(self, name: str, text: str, variables: Mapping[str, sympy.Basic]):
+    def __init__(self, name: str, text: str, variables: Mapping[str, sympy.Basic], option: str = "--set"):
         self.name = name
         self.text = text
         self.variables = variables
+        self.option = option
+        key = name.split()[-1] if name.split() else "x"
+        self.example = f"{option} {key if key.isidentifier() else 'x'}=2"
 
     # -- messages -----------------------------------------------------------
     def expectation(self) -> str:
@@ -210,7 +213,7 @@ class _Evaluator:
     def nonfinite(self, got: str) -> InputError:
         return self.fail(
             f"expected a finite real number, got {got}",
-            f"pass e.g. --set {self.name}=2",
+            f"pass e.g. {self.example}",
         )
 
     def source(self, node: ast.AST) -> str:
@@ -266,7 +269,7 @@ class _Evaluator:
             if entry.has(sympy.I):
                 raise self.fail(
                     f"expected a real value, got {_quote(text)}, which is imaginary",
-                    f"pass e.g. --set {self.name}=2",
+                    f"pass e.g. {self.example}",
                 )
         return result
 
@@ -342,7 +345,7 @@ class _Evaluator:
         if isinstance(value, complex):
             raise self.fail(
                 f"expected a real number, got the imaginary literal {self.source(node)}",
-                f"pass e.g. --set {self.name}=2",
+                f"pass e.g. {self.example}",
             )
         if isinstance(value, str):
             raise self.not_allowed(f"string {self.source(node)}", node)
@@ -650,6 +653,7 @@ def parse_value(
     *,
     name: str = "value",
     variables: Mapping[str, sympy.Symbol] | None = None,
+    option: str = "--set",
 ) -> sympy.Expr | sympy.ImmutableMatrix:
     """Turn user text into a SymPy expression or matrix without executing it.
 
@@ -669,6 +673,9 @@ def parse_value(
         Names that may appear in the expression and the SymPy symbols they
         stand for, e.g. ``{"t": sympy.Symbol("t")}``.  They take precedence
         over the constants ``pi`` and ``E``.
+    option : str, optional
+        The command-line option the value came from (``"--set"`` or
+        ``"--history"``), used in the suggested fixes.
 
     Returns
     -------
@@ -710,10 +717,10 @@ def parse_value(
         if not isinstance(symbol, sympy.Basic):
             raise TypeError(f"variable {key!r} must be a SymPy object, not {type(symbol).__name__}")
         checked[key] = symbol
-    return _Evaluator(name, text.strip(), checked).run()
+    return _Evaluator(name, text.strip(), checked, option).run()
 
 
-def parse_assignment(text: str) -> tuple[str, str]:
+def parse_assignment(text: str, *, option: str = "--set") -> tuple[str, str]:
     """Split ``'NAME=VALUE'`` into ``(name, value_text)``.
 
     The text is split at the first ``=``; spaces around both parts are
@@ -724,6 +731,8 @@ def parse_assignment(text: str) -> tuple[str, str]:
     ----------
     text : str
         The argument of ``--set``, e.g. ``"mu=2"`` or ``"P = diag(2,2)"``.
+    option : str, optional
+        The option it came from (``"--set"`` or ``"--history"``), named in the messages.
 
     Returns
     -------
@@ -745,24 +754,24 @@ def parse_assignment(text: str) -> tuple[str, str]:
         raise TypeError(f"text must be a str, not {type(text).__name__}")
     raw_name, sep, value = text.partition("=")
     name, value = raw_name.strip(), value.strip()
-    label = _one_line(name, 40) if name else "--set"
+    label = _one_line(name, 40) if name else option
     if not sep:
         raise InputError(
             f"{label}: expected NAME=VALUE, got {_quote(text)}; "
-            f"write e.g. --set {name if name.isidentifier() else 'mu'}=2"
+            f"write e.g. {option} {name if name.isidentifier() else 'mu'}=2"
         )
     if not name:
         raise InputError(
-            f"--set: expected NAME=VALUE with a name before '=', got {_quote(text)}; "
-            f"write e.g. --set mu={_one_line(value, 40) or '2'}"
+            f"{option}: expected NAME=VALUE with a name before '=', got {_quote(text)}; "
+            f"write e.g. {option} mu={_one_line(value, 40) or '2'}"
         )
     if not name.isidentifier():
         raise InputError(
             f"{label}: expected a name made of letters, digits and _ that does not "
-            f"start with a digit, got {_quote(name)}; write e.g. --set mu=2"
+            f"start with a digit, got {_quote(name)}; write e.g. {option} mu=2"
         )
     if not value:
         raise InputError(
-            f"{name}: expected a value after '=', got {_quote(text)}; write e.g. --set {name}=2"
+            f"{name}: expected a value after '=', got {_quote(text)}; write e.g. {option} {name}=2"
         )
     return name, value

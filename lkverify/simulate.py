@@ -51,7 +51,14 @@ from .parameters import apply_substitution
 from .symbols import t
 from .system import System
 
-__all__ = ["CompiledSystem", "Trajectory", "compile_system", "simulate"]
+__all__ = ["CompiledSystem", "Trajectory", "compile_system", "simulate", "check_simulation", "MAX_STEPS"]
+
+#: The step floor.  Steps are at most ``min(delays)`` long (the method of steps), so a run
+#: needs at least ``(t_end − t0) / min(delays)`` steps: a run needing more than MAX_STEPS is
+#: refused up front (a tiny delay, a huge t_end).  During a run, when the mean of the last
+#: :data:`lkverify.dde.FLOOR_WINDOW` steps falls below ``(t_end − t0) / MAX_STEPS`` the run
+#: stops: a blow-up (``diverged``) if ‖y‖ has grown, else a step collapse (a stiff system).
+MAX_STEPS = 10**7
 
 _u = sympy.Symbol("u", real=True)
 
@@ -414,18 +421,29 @@ class Trajectory:
         return {name: Y[:, sl] for name, sl in self.layout.items()}
 
 
+def _example_history(s) -> str:
+    comps = ",".join(["0.1"] * s.dim)
+    return f"--history {s.name}={comps if s.dim == 1 else '[' + comps + ']'}"
+
+
 def _history_function(system: System, history: Mapping[str, object], layout: dict, n: int):
     """The initial history as phi(s) → state vector (validated)."""
     known = {s.name: s for s in system.states}
     unknown = set(history) - set(known)
     if unknown:
-        raise InputError(f"history for unknown state(s) {sorted(unknown)}; the states are {sorted(known)}")
+        raise InputError(f"history for unknown state(s) {', '.join(sorted(unknown))}: expected one of the states "
+                         f"{', '.join(sorted(known))}; fix the name (e.g. {_example_history(system.states[0])})")
     missing = set(known) - set(history)
     if missing:
         raise InputError(f"no history given for state(s) {sorted(missing)}; give a constant vector or a function of t")
     parts = []
     for s in system.states:
         h = history[s.name]
+        if isinstance(h, (int, float, np.number)) or (isinstance(h, sympy.Basic) and not isinstance(h, sympy.MatrixBase)):
+            if s.dim != 1:
+                raise InputError(f"history of {s.name}: expected {s.dim} components (a vector), got the scalar "
+                                 f"{h}; pass e.g. {_example_history(s)}")
+            h = [h]
         if callable(h) and not isinstance(h, sympy.Basic):
             fn = h
         else:
@@ -435,9 +453,14 @@ def _history_function(system: System, history: Mapping[str, object], layout: dic
                 h = [parse_value(x, name=f"history of {s.name}", variables={"t": t}) if isinstance(x, str) else x
                      for x in (h if isinstance(h, (list, tuple)) else [h])]
                 h = h[0] if len(h) == 1 and isinstance(h[0], sympy.MatrixBase) else h
-            m = sympy.Matrix(h) if not isinstance(h, sympy.MatrixBase) else h
+            try:
+                m = sympy.Matrix(h) if not isinstance(h, sympy.MatrixBase) else h
+            except (TypeError, ValueError, sympy.SympifyError):
+                raise InputError(f"history of {s.name}: expected {s.dim} numbers, got {h!r}; pass e.g. "
+                                 f"{_example_history(s)}") from None
             if m.shape not in ((s.dim, 1), (1, s.dim)):
-                raise InputError(f"history of {s.name}: expected {s.dim} components, got shape {m.shape}")
+                raise InputError(f"history of {s.name}: expected {s.dim} components, got shape {m.shape}; "
+                                 f"pass e.g. {_example_history(s)}")
             extra = m.free_symbols - {t}
             if extra:
                 raise InputError(f"history of {s.name}: expected an expression in t only, got symbols {sorted(map(str, extra))}")
@@ -449,7 +472,8 @@ def _history_function(system: System, history: Mapping[str, object], layout: dic
                 fn = lambda s_, c=const: c  # noqa: E731
         v = np.asarray(fn(0.0), dtype=float).ravel()
         if v.shape != (s.dim,):
-            raise InputError(f"history of {s.name}: expected {s.dim} components, got {v.size}")
+            raise InputError(f"history of {s.name}: expected {s.dim} components, got {v.size}; "
+                             f"pass e.g. {_example_history(s)}")
         if not np.all(np.isfinite(v)):
             raise InputError(f"history of {s.name}: not finite at t0: {v}")
         parts.append((layout[s.name], fn))
@@ -496,10 +520,76 @@ def _monitors(system: System, layout: dict) -> dict:
     return mons
 
 
+def _check_coefficients(system: System, checked: Mapping, lo: float, hi: float) -> None:
+    """Refuse a time-varying coefficient that is not finite (or not real) somewhere on [lo, hi]."""
+    from .parameters import Kind
+
+    grid = np.unique(np.concatenate([np.linspace(lo, hi, 4001), [lo, 0.0, hi]] if lo <= 0 <= hi
+                                    else [np.linspace(lo, hi, 4001), [lo, hi]]))
+    for spec in system.parameters:
+        if spec.kind is not Kind.COEFFICIENT or spec.name not in checked:
+            continue
+        value = checked[spec.name]
+        bad = None
+        try:
+            f = sympy.lambdify([t], value, modules="numpy")
+            with np.errstate(all="ignore"):
+                vals = np.broadcast_to(np.asarray(f(grid)), grid.shape)
+            if np.iscomplexobj(vals):
+                nonreal = np.abs(np.imag(vals)) > 0
+                vals = np.where(nonreal, np.nan, np.real(vals))
+            vals = vals.astype(float)
+            idx = np.nonzero(~np.isfinite(vals))[0]
+            if idx.size:
+                bad = float(grid[idx[0]])
+        except (ZeroDivisionError, OverflowError, ValueError, TypeError, FloatingPointError):
+            bad = lo
+        if bad is not None:
+            raise InputError(f"{spec.name}: expected a coefficient finite and real on the simulated horizon "
+                             f"[{lo:g}, {hi:g}], got {spec.name}(t) = {value}, which is not at t = {bad:.6g}; "
+                             f"pass a function defined on the whole horizon, e.g. --set \"{spec.name}=1/(1+t)\"")
+
+
+def check_simulation(system: System, *, history: Mapping[str, object], t_end: float,
+                     values: Mapping[str, object] | None = None, t0: float = 0.0, max_step: float = np.inf,
+                     integrals: str = "auto"):
+    """Validate a run before integrating it; returns ``(compiled, phi, max_step)``.
+
+    Checks the parameter values, that every time-varying coefficient is finite on the
+    horizon ``[t0 − max delay, t_end]``, the initial history, and the step floor:
+    steps are at most ``min(delays)`` (and ``max_step``) long, so a run needing more
+    than :data:`MAX_STEPS` steps is refused.
+
+    Raises
+    ------
+    InputError
+        With the reason (one line).
+    """
+    if not (isinstance(t_end, (int, float)) and np.isfinite(t_end)) or t_end <= t0:
+        raise InputError(f"t_end: expected a number greater than t0 = {t0}, got {t_end}")
+    comp = compile_system(system, values, integrals=integrals)
+    checked = system.parameters.resolve(values or {}, use_defaults=True)
+    _check_coefficients(system, checked, t0 - (max(comp.lags) if comp.lags else 0.0), float(t_end))
+    phi = _history_function(system, history, comp.layout, comp.n_states)
+    if comp.quads:
+        max_step = min(max_step, 0.05)  # the current-step piece of a general kernel is not error-controlled
+    cap = min([max_step, *comp.lags])
+    if np.isfinite(cap):
+        needed = (t_end - t0) / cap
+        if needed > MAX_STEPS:
+            why = (f"the shortest delay {min(comp.lags):g}" if comp.lags and cap == min(comp.lags)
+                   else f"the largest step {cap:g}")
+            raise InputError(f"system {system.name or ''}: a run to t_end = {t_end:g} needs at least {needed:.3g} "
+                             f"steps (steps are at most {why} long); expected at most {MAX_STEPS:.0e} (the step "
+                             f"floor); shorten --t-end or lengthen the delay")
+    return comp, phi, max_step
+
+
 def simulate(system: System, *, history: Mapping[str, object], t_end: float, values: Mapping[str, object] | None = None,
              t0: float = 0.0, rtol: float = 1e-8, atol: float = 1e-10, method: str = "DOP853",
              divergence_bound: float = 1e8, max_step: float = np.inf, t_eval=None,
-             progress: Callable[[float], None] | None = None, integrals: str = "auto") -> Trajectory:
+             progress: Callable[[float], None] | None = None, integrals: str = "auto",
+             deadline=None) -> Trajectory:
     """Integrate ``system`` from the initial ``history`` on [t0 − τ, t0] to ``t_end``.
 
     Parameters
@@ -514,16 +604,27 @@ def simulate(system: System, *, history: Mapping[str, object], t_end: float, val
         Passed to :func:`lkverify.dde.solve_dde`.
     integrals : {"auto", "quadrature"}
         See :func:`compile_system`.
+    deadline : lkverify.budget.Deadline, optional
+        When it passes the run stops with outcome ``budget`` (incomplete, undecided).
+
+    The step floor (:data:`MAX_STEPS` = 1e7): a run that needs more than 1e7 steps
+    because steps are capped at the shortest delay is refused up front; a run whose
+    last 200 steps average less than ``(t_end − t0)/1e7`` stops with outcome
+    ``diverged`` (a blow-up: ‖y‖ grew 1000-fold) or ``step_collapse`` (stiff).
 
     Returns
     -------
     Trajectory
         With an outcome (never an exception for numerical trouble).
+
+    Raises
+    ------
+    InputError
+        Bad values, a coefficient not finite on the horizon, a bad history, or a run
+        needing more steps than the floor allows (see :func:`check_simulation`).
     """
-    if not (isinstance(t_end, (int, float)) and np.isfinite(t_end)) or t_end <= t0:
-        raise InputError(f"t_end: expected a number greater than t0 = {t0}, got {t_end}")
-    comp = compile_system(system, values, integrals=integrals)
-    phi = _history_function(system, history, comp.layout, comp.n_states)
+    comp, phi, max_step = check_simulation(system, history=history, t_end=t_end, values=values, t0=t0,
+                                           max_step=max_step, integrals=integrals)
     n_aux = len(comp.aux)
     aux0 = np.zeros(n_aux)
 
@@ -532,13 +633,12 @@ def simulate(system: System, *, history: Mapping[str, object], t_end: float, val
 
     if n_aux:
         aux0[:] = comp.aux_initial(t0, _InitialPast(full_history, t0))
-    if comp.quads:
-        max_step = min(max_step, 0.05)  # the current-step piece of a general kernel is not error-controlled
     start = time.monotonic()
     sol = solve_dde(comp.fun, (t0, t_end), full_history, lags=comp.lags, method=method, rtol=rtol, atol=atol,
                     max_step=max_step, divergence_bound=divergence_bound, t_eval=t_eval,
                     resync=comp.resync if any(a.kind == "window" for a in comp.aux) else None,
-                    monitors=_monitors(system, comp.layout), progress=progress)
+                    monitors=_monitors(system, comp.layout), progress=progress, deadline=deadline,
+                    min_mean_step=(t_end - t0) / MAX_STEPS)
     seconds = time.monotonic() - start
     if t_eval is not None and sol.y_eval is not None:
         times, Y = np.asarray(sol.t_eval), np.asarray(sol.y_eval)

@@ -201,7 +201,7 @@ def lemma1_delta(eps, *, budget_seconds=20.0):
     return chk, 2 * sbar, 2 * est
 
 
-def _lemma1_check(v):
+def _lemma1_check(v, *, budget=60.0):
     eps_values = [v["eps"]] if v.get("eps") is not None else list(EPSILONS)
     out = []
     from lkverify.errors import InputError
@@ -209,7 +209,7 @@ def _lemma1_check(v):
     for eps in eps_values:
         if not (0 < eps < 1):
             raise InputError(f"eps: Lemma 1 needs 0 < ε < 1, got eps={eps}; e.g. --set eps=0.9")
-        chk, delta, est = lemma1_delta(eps)
+        chk, delta, est = lemma1_delta(eps, budget_seconds=budget / len(eps_values))
         others = [2 * _lemma1_sigma_estimate(float(eps), r1_=R[:, 0], r2_=R[:, 1]) for R in _ROTATED_PAIRS]
         status = _Status.CERTIFIED if chk.status is _Status.CERTIFIED else chk.status
         out.append(_Result("region", f"delta(eps={eps})", status,
@@ -238,7 +238,7 @@ class _Lemma1Constants:
 
         if progress:
             progress(f"{item_name}: certifying δ(ε)")
-        results = tuple(_lemma1_check(values))
+        results = tuple(_lemma1_check(values, budget=budget))
         bad = [r.name for r in results if not r.status.holds]
         verdict = "certified δ(ε)" if not bad else f"undecided: {', '.join(bad)}"
         return Report(item_name, dict(shown), results, verdict), {"results": results}

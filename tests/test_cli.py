@@ -30,7 +30,7 @@ def test_theorem3_holds_at_the_fig6_gains(capsys):
                        "--set", "tau=1", "--set", "mu=2", "--json")
     assert code == 0
     doc = json.loads(out)
-    assert set(doc) == {"item", "parameters", "results", "verdict"}
+    assert {"item", "parameters", "results", "verdict"} <= set(doc)
     by_name = {r["name"]: r for r in doc["results"]}
     assert by_name["Vdot_structured"]["status"] == "exact"
     assert by_name["Vdot_structured"]["kind"] == "identity"
