@@ -799,7 +799,8 @@ def _describe_margin(m: Enclosure) -> str:
         return f"= {m.exact}"
     if m.exact is not None:
         text = str(m.exact)
-        text = text if len(text) <= 40 else "an algebraic number (margin.exact)"
+        if len(text) > 40:  # a long radical: the enclosure says more
+            return f"∈ [{float_down(m.lo):.12g}, {float_up(m.hi):.12g}] (an exact algebraic number)"
         return f"= {text} ∈ [{float_down(m.lo):.12g}, {float_up(m.hi):.12g}]"
     lo = "−∞" if m.lo is None else f"{float_down(m.lo):.12g}"
     hi = "+∞" if m.hi is None else f"{float_up(m.hi):.12g}"

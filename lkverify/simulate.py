@@ -221,6 +221,9 @@ def compile_system(system: System, values: Mapping[str, object] | None = None, *
     aux_expr: dict = {}
     quad_holders: dict = {}
     for I in dict.fromkeys(i for e in rhs for i in _outer_integrals(e)):
+        if len(I.limits) != 1 or len(I.limits[0]) != 3:
+            raise InputError(f"{system.name or 'system'}: the simulator integrates right-hand sides with single "
+                             f"definite integrals; got {I}; write the inner integral as an auxiliary state")
         (var, lo, hi), = I.limits
         g = I.function
         width = sympy.simplify(hi - lo)
