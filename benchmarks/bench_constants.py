@@ -14,8 +14,8 @@ import os
 import platform
 import time
 
-from lkverify import bounds
-from lkverify.catalogue import find_items
+from lkverify.certify import bounds
+from lkverify.catalogue.loader import find_items
 
 
 def main() -> None:

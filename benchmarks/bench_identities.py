@@ -15,7 +15,7 @@ import os
 import platform
 import time
 
-from lkverify.catalogue import find_items
+from lkverify.catalogue.loader import find_items
 
 
 def run_once(name: str) -> tuple[float, str]:

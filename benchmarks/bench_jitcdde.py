@@ -82,8 +82,8 @@ except ImportError:
 import numpy as np
 import sympy
 
-from lkverify.catalogue import find_items
-from lkverify.simulate import compile_system, simulate
+from lkverify.catalogue.loader import find_items
+from lkverify.simulate.compile import compile_system, simulate
 
 CASES = [("aleksandrov2023.fig1", 0), ("aleksandrov2026.example", 0)]
 N_GRID = 2001

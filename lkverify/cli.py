@@ -14,10 +14,10 @@ Bad input is refused before any computing: values, output paths (``--plot``),
 goals and budgets are checked first.
 
 Budgets (``--budget SECONDS``) are positive finite numbers up to
-:data:`lkverify.budget.MAX_BUDGET_SECONDS` (1e6 s); ``inf`` and larger values are
+:data:`lkverify.options.MAX_BUDGET_SECONDS` (1e6 s); ``inf`` and larger values are
 refused.  ``check``: per identity (default 60 s).  ``constants``: the whole job
 (default 150 s).  ``simulate``: all runs of the example together (default
-:data:`lkverify.example.DEFAULT_SIMULATE_BUDGET`).  Loading a proof file is not
+:data:`lkverify.catalogue.examples.DEFAULT_SIMULATE_BUDGET`).  Loading a proof file is not
 covered by ``--budget``: it has its own limit, ``--load-limit`` (default 60 s).
 """
 
@@ -31,10 +31,10 @@ import sys
 import time
 from pathlib import Path
 
-from .budget import MAX_BUDGET_SECONDS, BudgetExceeded
-from .catalogue import LOAD_LIMIT_SECONDS, catalogue, find_items
+from .options import MAX_BUDGET_SECONDS, BudgetExceeded
+from .catalogue.loader import LOAD_LIMIT_SECONDS, catalogue, find_items
 from .errors import InputError
-from .parse import parse_assignment
+from .declare.parse import parse_assignment
 
 #: exit code of an unexpected exception (a bug in lkverify); see the module docstring
 EXIT_INTERNAL = 3
@@ -69,8 +69,8 @@ def _add_load_limit(p) -> None:
 
 
 def _build_parser() -> argparse.ArgumentParser:
-    from .dde import FLOOR_WINDOW
-    from .example import DEFAULT_SIMULATE_BUDGET, MAX_STEPS
+    from .simulate.solver import FLOOR_WINDOW
+    from .catalogue.examples import DEFAULT_SIMULATE_BUDGET, MAX_STEPS
 
     p = _Parser(prog="lkverify", description="Check Lyapunov–Krasovskii stability proofs. "
                 "With no command: the report of every catalogued item at the papers' defaults.")
@@ -239,10 +239,10 @@ def _bar(enabled: bool, label: str):
 
 
 def _simulate(args) -> int:
-    from .budget import Deadline
-    from .example import Example
-    from .parse import parse_value
-    from .symbols import t as t_sym
+    from .options import Deadline
+    from .catalogue.examples import Example
+    from .declare.parse import parse_value
+    from .declare.symbols import t as t_sym
 
     if args.t_end is not None and not (args.t_end > 0 and args.t_end < float("inf")):
         raise InputError(f"--t-end: expected a positive finite time, got {args.t_end}")
@@ -319,8 +319,8 @@ BACKSTOP_GRACE_SECONDS = 0.5
 
 def _constants_within_budget(item, values, args, say):
     """Run the item's constants job; a job that overruns its budget is interrupted (undecided)."""
-    from .budget import Deadline
-    from .results import Report, Result
+    from .options import Deadline
+    from .report.results import Report, Result
     from .status import Status
 
     backstop = Deadline(args.budget + BACKSTOP_GRACE_SECONDS)

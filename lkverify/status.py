@@ -16,7 +16,7 @@ The exactness policy (every checker follows it; this is where it is written down
    only ``exact`` could confirm them, and a float may have been rounded before lkverify
    sees it.
 3. **A value that went through floating point is never ``EXACT``.**  It is decided in
-   outward-rounded interval arithmetic (:mod:`lkverify.intervals`): ``CERTIFIED`` or
+   outward-rounded interval arithmetic (:mod:`lkverify.certify.intervals`): ``CERTIFIED`` or
    ``FAILED``, else ``UNDECIDED``.  A point value (mpmath, NumPy) is an estimate, not an
    enclosure.  Irrational constants (√2 − 1) are decided by enclosures too: ``CERTIFIED``.
 4. **``EXACT`` means reduced symbolically**: an identity whose difference reduces to 0
@@ -25,7 +25,7 @@ The exactness policy (every checker follows it; this is where it is written down
    residue is certified nonzero at a witness (interval arithmetic) or is clearly nonzero
    in floating point relative to its own terms; a matrix witness xᵀMx ≤ 0 is checked
    exactly or in intervals.  Otherwise ``UNDECIDED``, with what stopped the proof.
-6. **Verdicts are computed** from the chain of links (:meth:`lkverify.items.Theorem.chain`):
+6. **Verdicts are computed** from the chain of links (:meth:`lkverify.catalogue.items.Theorem.chain`):
    "established" only when every link is ``EXACT`` or ``CERTIFIED``.
 """
 

@@ -94,8 +94,8 @@ theorem1 = Theorem(
 # Section 6: the example.  Initial aircraft angles (0.5, 0.5, −0.5), ω = (0.3, 0.3, 0.3).
 import numpy as np  # noqa: E402
 
-from lkverify.example import BoundedNotAttractive, Converges, DoesNotConverge, Example, Run, Series  # noqa: E402
-from lkverify.rigidbody import inertial_vectors_from_angles  # noqa: E402
+from lkverify.catalogue.examples import BoundedNotAttractive, Converges, DoesNotConverge, Example, Run, Series  # noqa: E402
+from lkverify.simulate.rigidbody import inertial_vectors_from_angles  # noqa: E402
 
 _S0 = inertial_vectors_from_angles(0.5, 0.5, -0.5)  # columns s1, s2, s3 (r_i = base axes)
 HISTORY = {"omega": [0.3, 0.3, 0.3], "s1": list(_S0[:, 0]), "s2": list(_S0[:, 1]), "s3": list(_S0[:, 2])}
@@ -147,9 +147,9 @@ example = Example(
 # Hence F ≥ 0 on σ ∈ [0, σ̄] for every u proves the lemma with δ = 2σ̄.
 import sympy as _sp  # noqa: E402
 
-from lkverify import bounds as _bounds  # noqa: E402
-from lkverify.items import Check as _Check  # noqa: E402
-from lkverify.results import Result as _Result  # noqa: E402
+from lkverify.certify import bounds as _bounds  # noqa: E402
+from lkverify.catalogue.items import Check as _Check  # noqa: E402
+from lkverify.report.results import Result as _Result  # noqa: E402
 from lkverify.status import Status as _Status  # noqa: E402
 
 _sig, _th, _ph = _sp.symbols("sigma theta phi", real=True)
@@ -234,7 +234,7 @@ class _Lemma1Constants:
     goals = ["default"]
 
     def run(self, item_name, values, shown, *, budget=150.0, progress=None, goal=None):
-        from lkverify.results import Report
+        from lkverify.report.results import Report
 
         if progress:
             progress(f"{item_name}: certifying δ(ε)")

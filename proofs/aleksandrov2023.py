@@ -28,8 +28,8 @@ import sympy
 
 from lkverify import (Equation, Functional, Parameters, System, Term, UnitVector, Vector, cross, dot,
                       norm_power, norm_squared, quad, t, window_integral, xi)
-from lkverify.claims import DerivativeClaim, Hypothesis
-from lkverify.items import Theorem
+from lkverify.symbolic.claims import DerivativeClaim, Hypothesis
+from lkverify.catalogue.items import Theorem
 
 PAPER = "aleksandrov2023"
 
@@ -130,15 +130,15 @@ theorem3 = Theorem(
 # initial functions on [−τ, 0] from the aircraft angles (φ, θ, ψ) = (0.5, 0.6, −0.8), ω = (1,1,1).
 import numpy as np  # noqa: E402
 
-from lkverify.example import (Converges, DoesNotConverge, EnvelopeSpec, Example, Run,  # noqa: E402
+from lkverify.catalogue.examples import (Converges, DoesNotConverge, EnvelopeSpec, Example, Run,  # noqa: E402
                               Sensitive, Series)
-from lkverify.rigidbody import chi_norm, inertial_vectors_from_angles  # noqa: E402
+from lkverify.simulate.rigidbody import chi_norm, inertial_vectors_from_angles  # noqa: E402
 
 R_TARGET = np.full(3, 1 / np.sqrt(3))
 
 
 def initial_history(angles, omega0):
-    """Constant history: s from the aircraft angles (default convention of lkverify.rigidbody), ω."""
+    """Constant history: s from the aircraft angles (default convention of lkverify.simulate.rigidbody), ω."""
     return {"s": list(inertial_vectors_from_angles(*angles, R_TARGET)), "omega": list(omega0)}
 
 
@@ -189,7 +189,7 @@ PRINTED_15 = {"d1": 9.21, "d2": 7.44, "d3": 0.23, "delta_tilde": 0.28}
 
 
 def _chi(run):
-    """‖χ‖_τ of a constant history: the uniform norm of (s − r, ω) in R⁶ (lkverify.rigidbody.chi_norm)."""
+    """‖χ‖_τ of a constant history: the uniform norm of (s − r, ω) in R⁶ (lkverify.simulate.rigidbody.chi_norm)."""
     s = np.asarray(run.history["s"], dtype=float)
     w = np.asarray(run.history["omega"], dtype=float)
     return float(chi_norm(s - R_TARGET, w))
@@ -226,10 +226,10 @@ import math  # noqa: E402
 
 import sympy as _sp  # noqa: E402
 
-from lkverify.constants import ConstantsJob, Template  # noqa: E402
-from lkverify.results import Result  # noqa: E402
+from lkverify.certify.constants import ConstantsJob, Template  # noqa: E402
+from lkverify.report.results import Result  # noqa: E402
 from lkverify.status import Status  # noqa: E402
-from lkverify.region import DecayModel  # noqa: E402
+from lkverify.certify.decay import DecayModel  # noqa: E402
 
 _rho, _psi, _th, _ph = _sp.symbols("rho psi theta phi", real=True)
 RHO_CAP = _sp.Rational(1, 2)  # the cap ‖s − r‖ ≤ 2 sin(1/4) ≈ 0.4948 contains every region searched
@@ -384,8 +384,8 @@ def _random_history(rng, rv, chi):
 
 def _cross_check(v, cert, *, samples=8, t_end=300.0, seed=11):
     """Simulate histories inside the proved region and the Fig. 7 data against the certified envelope."""
-    from lkverify.envelope import cross_check
-    from lkverify.simulate import simulate
+    from lkverify.simulate.envelope import cross_check
+    from lkverify.simulate.compile import simulate
     from lkverify.status import Status as _St
 
     rng = np.random.default_rng(seed)
@@ -476,7 +476,7 @@ THEOREM3_CONSTANTS = ConstantsJob(
 
 theorem3.constants = THEOREM3_CONSTANTS
 
-from lkverify.items import Check  # noqa: E402
+from lkverify.catalogue.items import Check  # noqa: E402
 
 # The printed bound on V̇ in the proof of Theorem 3 writes the ω–history term as b(λ + c7τ)‖ω‖∫‖s−r‖^μ.
 theorem3_bound = Check("theorem3_bound", parameters=P, checks=[_printed_bound_refuted],
@@ -484,7 +484,7 @@ theorem3_bound = Check("theorem3_bound", parameters=P, checks=[_printed_bound_re
 
 
 # ‖χ‖_τ of the Fig. 7 data: the paper reports 0.25 (inside its region 0.28).
-from lkverify.rigidbody import chi_norm_table as _chi_norm_table  # noqa: E402
+from lkverify.simulate.rigidbody import chi_norm_table as _chi_norm_table  # noqa: E402
 
 
 def _fig7_chi(v):

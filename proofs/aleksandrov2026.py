@@ -28,8 +28,8 @@ r1 = (1/√2, 1/√2, 0), r2 = (−1/√2, 1/√2, 0), r3 = (0, 0, 1), α1 = α2
 
 from lkverify import (Equation, Frame, Functional, Parameters, System, Term, Vector, cross, dot, memory_integral,
                       norm_power, norm_squared, quad, t, window_integral, xi)
-from lkverify.claims import DerivativeClaim, Hypothesis, MatrixHypothesis
-from lkverify.items import Theorem
+from lkverify.symbolic.claims import DerivativeClaim, Hypothesis, MatrixHypothesis
+from lkverify.catalogue.items import Theorem
 
 PAPER = "aleksandrov2026"
 
@@ -149,7 +149,7 @@ system_pid = System([
 # Remark 3 reduces it to β + ∫_0^∞ g > 0 (D ≻ 0); Assumption 1 for g = e^{−aζ} holds with σ = 1/a.
 import sympy as _sp  # noqa: E402
 
-from lkverify.symbols import zeta as _zeta  # noqa: E402
+from lkverify.declare.symbols import zeta as _zeta  # noqa: E402
 
 _int_g = _sp.Integral(g(_zeta), (_zeta, 0, _sp.oo))
 _Xi = (beta + _int_g) * _sp.eye(3)
@@ -167,7 +167,7 @@ theorem2 = Theorem(
 # Section 5: the example.  t0 = 0, constant initial functions on [−1, 0].
 import numpy as np  # noqa: E402
 
-from lkverify.example import Converges, Example, FasterThan, Run, Series, SmootherThan  # noqa: E402
+from lkverify.catalogue.examples import Converges, Example, FasterThan, Run, Series, SmootherThan  # noqa: E402
 
 HISTORY = {"omega": [0.3, -0.4, 0.4], "s1": [0, 0, 1], "s2": [2 / np.sqrt(5), 1 / np.sqrt(5), 0],
            "s3": [-1 / np.sqrt(5), 2 / np.sqrt(5), 0]}

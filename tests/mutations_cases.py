@@ -24,7 +24,7 @@ import sympy
 
 from lkverify import (DerivativeClaim, Equation, Functional, Parameters, System, Term, Theorem, UnitVector,
                       Vector, t, window_integral, xi)
-from lkverify.vectors import cross, dot
+from lkverify.declare.vectors import cross, dot
 
 __all__ = ["Family", "ClaimCase", "FAMILIES", "MUTATED", "TRUE", "CLOSED_FORMS", "near_singular_matrices",
            "run_claim"]

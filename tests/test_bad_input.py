@@ -14,9 +14,9 @@ import numpy as np
 import pytest
 
 from lkverify import cli
-from lkverify.budget import BudgetExceeded, Deadline
+from lkverify.options import BudgetExceeded, Deadline
 from lkverify.cli import main
-from lkverify.dde import Outcome, solve_dde
+from lkverify.simulate.solver import Outcome, solve_dde
 from lkverify.errors import InputError
 
 
@@ -85,14 +85,14 @@ def test_check_with_the_largest_accepted_budget_runs(capsys):
 @pytest.fixture
 def no_computing(monkeypatch):
     """Fail if a simulation or a constants job starts."""
-    import lkverify.constants
-    import lkverify.example
+    import lkverify.certify.constants
+    import lkverify.catalogue.examples
 
     def boom(*a, **k):
         raise AssertionError("computing started before the bad input was refused")
 
-    monkeypatch.setattr(lkverify.example.Example, "simulate", boom)
-    monkeypatch.setattr(lkverify.constants.ConstantsJob, "run", boom)
+    monkeypatch.setattr(lkverify.catalogue.examples.Example, "simulate", boom)
+    monkeypatch.setattr(lkverify.certify.constants.ConstantsJob, "run", boom)
     monkeypatch.setattr(type(cli.find_items("aleksandrov2017.lemma1")[0].constants), "run", boom)
 
 

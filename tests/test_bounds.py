@@ -1,4 +1,4 @@
-"""Certified constants (lkverify.bounds) against closed forms and slow reference paths.
+"""Certified constants (lkverify.certify.bounds) against closed forms and slow reference paths.
 
 Reference paths: enclosures are checked against point values at sampled points
 (mpmath at 50 digits, an independent evaluator), certified suprema against dense
@@ -15,7 +15,7 @@ import pytest
 import sympy
 from flint import arb
 
-from lkverify.bounds import (
+from lkverify.certify.bounds import (
     ArbFunction, ball_point, best_constant, certify_nonpositive, certify_positive, check_constant,
     compile_arb, compile_numpy, rotation_axis_angle, rotation_euler, rotation_quaternion,
     rotation_vector, sup_bound, unit_vector_angles, unit_vector_near,
@@ -95,7 +95,7 @@ def test_enclosures_contain_the_values_at_sampled_points():
 
 def test_affine_forms_contain_the_values_at_sampled_points():
     """The affine evaluator (a fast path of the branch and bound) against mpmath."""
-    from lkverify.bounds import _Aff, _ZERO
+    from lkverify.certify.bounds import _Aff, _ZERO
 
     exprs = [
         sympy.Abs(x - y) + sympy.Max(x, y ** 2) - sympy.Min(x, R(1, 3)) + sympy.sign(x) * y,
@@ -487,7 +487,7 @@ def test_lemma1_constant_by_axis_angle():
 
 
 # ---------------------------------------------------------------------------
-# the shared interval layer (lkverify.intervals)
+# the shared interval layer (lkverify.certify.intervals)
 
 def test_cosh_of_a_wide_ball_away_from_zero_contains_both_end_values():
     # regression: the wide-ball cosh negated the whole hull, -(min ∪ max), dropping cosh(lo)
@@ -501,7 +501,7 @@ def test_cosh_of_a_wide_ball_away_from_zero_contains_both_end_values():
 
 
 def test_compile_arb_is_the_shared_converter_at_any_precision():
-    from lkverify.intervals import UnsupportedExpression, enclose, lower_fraction, upper_fraction
+    from lkverify.certify.intervals import UnsupportedExpression, enclose, lower_fraction, upper_fraction
     import flint
     x, y = sympy.symbols("x y")
     expr = sympy.atan(x) * sympy.exp(-y) + sympy.sqrt(x ** 2 + 1) - sympy.Rational(1, 3)

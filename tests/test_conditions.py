@@ -1,4 +1,4 @@
-"""Positivity conditions (lkverify.conditions) against closed forms and independent references.
+"""Positivity conditions (lkverify.certify.conditions) against closed forms and independent references.
 
 References: SymPy's exact eigenvalues and exact evaluation of every witness
 (xᵀMx, f(x)) at the reported rational point, mpmath/NumPy eigenvalues, dense
@@ -16,14 +16,14 @@ import numpy as np
 import pytest
 import sympy
 
-import lkverify.conditions as conditions
-from lkverify.conditions import (
+import lkverify.certify.conditions as conditions
+from lkverify.certify.conditions import (
     ConditionResult, Enclosure, Estimate, best_quadratic_upper_bound, check_lyapunov_matrix,
     check_quadratic_bound, find_lyapunov_matrix, homogeneous_positive_on_sphere, lmi_feasible,
     matrix_positive_definite,
 )
 from lkverify.errors import InputError
-from lkverify.results import Result
+from lkverify.report.results import Result
 from lkverify.status import Status
 
 R = sympy.Rational

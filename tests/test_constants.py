@@ -6,10 +6,10 @@ import math
 import pytest
 import sympy
 
-from lkverify import bounds
-from lkverify.catalogue import find_items
+from lkverify.certify import bounds
+from lkverify.catalogue.loader import find_items
 from lkverify.cli import main
-from lkverify.region import DecayModel, Envelope, certify_decay, estimate_decay
+from lkverify.certify.decay import DecayModel, Envelope, certify_decay, estimate_decay
 from lkverify.status import Status
 
 w, e, j = sympy.symbols("w e j", nonnegative=True)

@@ -1,4 +1,4 @@
-"""Tests of lkverify.dde: the numeric DDE integrator core (method of steps on SciPy's RK steppers).
+"""Tests of lkverify.simulate.solver: the numeric DDE integrator core (method of steps on SciPy's RK steppers).
 
 Accuracy is checked against independent closed forms built with SymPy (method of
 steps, interval by interval) and against SciPy's own ODE solver; the fast paths
@@ -16,7 +16,7 @@ import scipy.linalg
 import sympy
 from scipy.integrate import DOP853, RK45, solve_ivp
 
-from lkverify.dde import DDESolution, DenseHistory, Outcome, solve_dde
+from lkverify.simulate.solver import DDESolution, DenseHistory, Outcome, solve_dde
 from lkverify.errors import InputError
 
 T = sympy.Symbol("t", real=True)

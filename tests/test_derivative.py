@@ -5,7 +5,7 @@ import pytest
 
 from lkverify import (Equation, Functional, Parameters, System, Term, UnitVector, Vector, cross, derivative_along,
                       memory_integral, norm_squared, tail_integral, t, window_integral, xi, zeta)
-from lkverify.canonical import Canonicalizer
+from lkverify.symbolic.canonical import Canonicalizer
 
 
 def same(a, b, system=None):

@@ -5,7 +5,7 @@ import json
 import numpy as np
 import pytest
 
-from lkverify.catalogue import find_items
+from lkverify.catalogue.loader import find_items
 from lkverify.cli import main
 from lkverify.status import Status
 
@@ -112,7 +112,7 @@ def test_decreasing_dissipation_beta_7_8_converges_and_8_7_does_not():
 
 def test_bounded_not_attractive_claim_fails_for_the_converging_case():
     """The same claim applied to β = 7/8 must fail: ∫h diverges, so no positive energy limit."""
-    from lkverify.example import BoundedNotAttractive
+    from lkverify.catalogue.examples import BoundedNotAttractive
 
     (ex,) = find_items("aleksandrov2017.example")
     claim = ex.claims[1]

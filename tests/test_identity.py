@@ -6,7 +6,7 @@ import pytest
 import sympy
 
 from lkverify import Status, Term, check_identity, derivative_along
-from lkverify.catalogue import find_items
+from lkverify.catalogue.loader import find_items
 
 
 def item(name):

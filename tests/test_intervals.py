@@ -1,4 +1,4 @@
-"""The one interval layer (lkverify.intervals): outward rounding, the SymPy → arb converter, signs.
+"""The one interval layer (lkverify.certify.intervals): outward rounding, the SymPy → arb converter, signs.
 
 References: exact rationals (fractions.Fraction) for every rounding, mpmath at
 600 bits for every whitelisted function, SymPy's exact rational arithmetic for
@@ -19,7 +19,7 @@ from flint import arb, fmpq
 
 import lkverify
 from lkverify.errors import InputError
-from lkverify.intervals import (
+from lkverify.certify.intervals import (
     SUPPORTED, SignResult, UnsupportedExpression, compile_program, enclose, float_down, float_up,
     lower_fraction, sign_of, to_ball, upper_fraction,
 )

@@ -30,7 +30,7 @@ import sympy
 
 from lkverify import (DerivativeClaim, Equation, Functional, Hypothesis, IdentityClaim, InputError, Parameters,
                       Status, System, Term, Theorem, Vector, derivative_along, t, window_integral, xi)
-from lkverify.claims import MatrixHypothesis
+from lkverify.symbolic.claims import MatrixHypothesis
 
 
 def _load_cases():

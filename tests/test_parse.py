@@ -1,4 +1,4 @@
-"""Tests of lkverify.parse: safe parsing of ``--set NAME=VALUE`` values."""
+"""Tests of lkverify.declare.parse: safe parsing of ``--set NAME=VALUE`` values."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ import time
 import pytest
 import sympy
 
-from lkverify.parse import InputError, parse_assignment, parse_value
+from lkverify.declare.parse import InputError, parse_assignment, parse_value
 
 t = sympy.Symbol("t")
 VARIABLES = {"t": t}

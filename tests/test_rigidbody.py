@@ -8,7 +8,7 @@ from scipy.linalg import expm
 from scipy.spatial.transform import Rotation
 
 from lkverify.errors import InputError
-from lkverify.rigidbody import (axis_angle_from_rotation, check_rotation, CHI_DEFINITIONS, chi_norm,
+from lkverify.simulate.rigidbody import (axis_angle_from_rotation, check_rotation, CHI_DEFINITIONS, chi_norm,
                                 chi_norm_table, CONVENTIONS, DEFAULT_CONVENTION, euler_rhs,
                                 inertial_vectors_from_angles, inertial_vectors_in_body, mrp_from_quaternion,
                                 mrp_from_rotation, poisson_rhs, quaternion_from_mrp,

@@ -6,8 +6,8 @@ import scipy.integrate
 import sympy
 
 from lkverify import Equation, InputError, Parameters, System, Term, UnitVector, Vector, cross, t, xi
-from lkverify.functional import memory_integral, window_integral
-from lkverify.simulate import compile_system, simulate
+from lkverify.declare.functional import memory_integral, window_integral
+from lkverify.simulate.compile import compile_system, simulate
 
 
 def method_of_steps(a, tau, history, intervals):

@@ -12,7 +12,7 @@ import sympy
 
 from lkverify import (DerivativeClaim, Equation, Functional, Hypothesis, InputError, Parameters, Status,
                       System, Term, Theorem, Vector, derivative_along, t, window_integral, xi)
-from lkverify.claims import MatrixHypothesis
+from lkverify.symbolic.claims import MatrixHypothesis
 from lkverify.cli import main
 
 # ẏ = −a y, states and parameters shared by the tests below --------------------------------------------------
@@ -226,7 +226,7 @@ def test_repeated_names_are_bad_input():
 
 
 def test_catalogue_theorems_are_not_established():
-    from lkverify.catalogue import catalogue
+    from lkverify.catalogue.loader import catalogue
 
     for pf in catalogue():
         for item in pf.items.values():
@@ -259,7 +259,7 @@ def test_true_claim_written_differently_is_exact():
 
 @pytest.mark.parametrize("beta", ["0", "-1/2 + 10**-9", "1"])
 def test_aleksandrov2026_theorem2_assumption2_holds(beta):
-    from lkverify.catalogue import find_items
+    from lkverify.catalogue.loader import find_items
 
     (item,) = find_items("aleksandrov2026.theorem2")
     report = item.run({"beta": beta})
@@ -267,7 +267,7 @@ def test_aleksandrov2026_theorem2_assumption2_holds(beta):
 
 
 def test_aleksandrov2026_theorem2_fails_for_negative_xi():
-    from lkverify.catalogue import find_items
+    from lkverify.catalogue.loader import find_items
 
     (item,) = find_items("aleksandrov2026.theorem2")
     report = item.run({"beta": "-1/2 - 10**-9"})

@@ -5,10 +5,10 @@ paper's print, or any intermediate equality) and ``reference`` (usually the
 blocks of a derived V̇):
 
 1. a fast randomized numeric check at witnesses on the constraint manifold
-   (:mod:`lkverify.witness`); a difference well above the quadrature accuracy
+   (:mod:`lkverify.symbolic.witness`); a difference well above the quadrature accuracy
    refutes the claim, and the witness is reported;
 2. the exact check: canonical normal forms modulo the constraints
-   (:mod:`lkverify.canonical`); a zero difference proves the claim ``exact``;
+   (:mod:`lkverify.symbolic.canonical`); a zero difference proves the claim ``exact``;
 3. the term-by-term report: terms on both sides are grouped by the monomials
    they share, and every group whose difference is nonzero is described
    (opposite sign, wrong coefficient, missing from the claim, absent from the
@@ -28,12 +28,12 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import sympy
 
-from .budget import BudgetExceeded, Deadline
+from ..options import BudgetExceeded, Deadline
 from .canonical import Canonicalizer
-from .parameters import Parameters
-from .status import Status
-from .terms import Term
-from .errors import InputError
+from ..declare.parameters import Parameters
+from ..status import Status
+from ..declare.terms import Term
+from ..errors import InputError
 from .witness import Witness, evaluate_many, make_witness, witness_constant
 
 __all__ = ["TermDifference", "IdentityResult", "check_identity"]
@@ -248,7 +248,7 @@ def _residue_at_witnesses(nf, total, witnesses, deadline) -> _ResidueCheck:
     """Evaluate the residue monomial by monomial at each witness; refute when it is clearly nonzero.
 
     Without integrals the residue is a constant expression at a witness and its sign is
-    decided in interval arithmetic (:func:`lkverify.intervals.sign_of`); with integrals it is
+    decided in interval arithmetic (:func:`lkverify.certify.intervals.sign_of`); with integrals it is
     evaluated in floating point with adaptive quadrature, and refutes when its value is
     above ``REFUTE_TOL`` relative to the sum of its terms' absolute values.
     """
@@ -283,7 +283,7 @@ def _residue_at_witnesses(nf, total, witnesses, deadline) -> _ResidueCheck:
 def _certified_sign(expr, w: Witness):
     """The sign (1, −1, or 0 for an exact zero) of ``expr`` at the witness, or None if not decided."""
     try:
-        from .intervals import sign_of
+        from ..certify.intervals import sign_of
     except ImportError:  # pragma: no cover - the interval layer ships with lkverify
         return None
     value = witness_constant(expr, w)

@@ -1,6 +1,6 @@
 """What a proof claims: hypotheses with margins, and identities.
 
-Proof modules declare these; :class:`~lkverify.items.Theorem` checks them.
+Proof modules declare these; :class:`~lkverify.catalogue.items.Theorem` checks them.
 """
 
 from __future__ import annotations
@@ -12,14 +12,14 @@ import sympy
 from sympy.core.function import AppliedUndef
 
 from .derivative import derivative_along
-from .functional import Functional
+from ..declare.functional import Functional
 from .identity import IdentityResult, check_identity
-from .parameters import Parameters, apply_substitution
-from .results import Result
-from .status import Status
-from .symbols import t as _t
-from .system import System
-from .terms import Term
+from ..declare.parameters import Parameters, apply_substitution
+from ..report.results import Result
+from ..status import Status
+from ..declare.symbols import t as _t
+from ..declare.system import System
+from ..declare.terms import Term
 
 __all__ = ["Hypothesis", "MatrixHypothesis", "DerivativeClaim", "IdentityClaim"]
 
@@ -118,7 +118,7 @@ class MatrixHypothesis:
     """A hypothesis ``M ≻ 0`` on a matrix built from the parameters (e.g. ΞD + DΞᵀ of paper 000).
 
     Decided exactly (rational LDLᵀ) when the entries are rational, with arb balls
-    otherwise; the margin is a lower bound of λ_min (:func:`lkverify.conditions.matrix_positive_definite`).
+    otherwise; the margin is a lower bound of λ_min (:func:`lkverify.certify.conditions.matrix_positive_definite`).
     Entries are never rounded or snapped: floating-point entries are taken at their
     exact binary values, and a result that rests on them is at most ``certified``.
     """
@@ -129,7 +129,7 @@ class MatrixHypothesis:
 
     def evaluate(self, substitution, *, budget: float | None = None) -> Result:
         """Decide ``M ≻ 0`` at the substituted values."""
-        from .conditions import matrix_positive_definite
+        from ..certify.conditions import matrix_positive_definite
 
         ref = f" {self.reference}" if self.reference else ""
         M = sympy.Matrix(self.matrix)
@@ -157,7 +157,7 @@ def _show(m) -> str:
 
 def _simplified(m, budget):
     """``sympy.simplify(m)`` within at most 10 s of the budget, or None."""
-    from .budget import BudgetExceeded, Deadline
+    from ..options import BudgetExceeded, Deadline
 
     try:
         with Deadline(min(budget, 10.0) if budget else 10.0).enforced():
@@ -179,7 +179,7 @@ def _f(q) -> str:
 
 
 def _sign(m):
-    from .intervals import UnsupportedExpression, sign_of
+    from ..certify.intervals import UnsupportedExpression, sign_of
 
     try:
         return sign_of(m)
@@ -200,7 +200,7 @@ def _prepare(expr, substitution, budget, what: str):
 
     Returns ``(value, floats)`` or a string: the reason it cannot be decided.
     """
-    from .budget import BudgetExceeded, Deadline
+    from ..options import BudgetExceeded, Deadline
 
     expr, floats = _exact_floats(expr)
     exact_sub = {}

@@ -25,7 +25,7 @@ import numpy as np
 import sympy
 from sympy.core.function import AppliedUndef
 
-from .errors import InputError
+from ..errors import InputError
 from .symbols import t as _t, zeta as _zeta
 from .vectors import dot
 
@@ -195,8 +195,8 @@ class ParameterSpec:
 
 def _check_positive_definite(name: str, value, n: int) -> None:
     """Raise InputError unless ``value ≻ 0`` is proved (exact LDLᵀ, or arb balls for irrational entries)."""
-    from .conditions import matrix_positive_definite
-    from .status import Status
+    from ..certify.conditions import matrix_positive_definite
+    from ..status import Status
 
     res = matrix_positive_definite(value, name=name)
     if res.status.is_proof:

@@ -14,7 +14,7 @@ import math
 
 import sympy
 
-from .status import Status
+from ..status import Status
 
 __all__ = ["Result", "Report", "jsonable"]
 

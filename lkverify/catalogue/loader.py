@@ -1,7 +1,7 @@
 """Loading proof files: the catalogue's and a user's go through the same loader.
 
 A proof file is a Python module (loaded by path, as pytest collects test
-files) whose module-level :class:`~lkverify.items.Item` objects are its items.
+files) whose module-level :class:`~lkverify.catalogue.items.Item` objects are its items.
 ``PAPER = "aleksandrov2023"`` names the paper; otherwise the file's stem does.
 The catalogue's proof files ship inside the installed package as
 ``lkverify.proofs`` (the repository's ``proofs/`` folder).
@@ -27,8 +27,8 @@ from pathlib import Path
 
 from sympy.core.function import AppliedUndef
 
-from .budget import BudgetExceeded, Deadline
-from .errors import InputError
+from ..options import BudgetExceeded, Deadline
+from ..errors import InputError
 from .items import Item
 
 __all__ = ["ProofFile", "load_proof_file", "catalogue", "find_items", "LOAD_LIMIT_SECONDS"]
@@ -142,7 +142,7 @@ def _inconsistency(item) -> str | None:
     """Why a theorem cannot be checked as declared (states or symbols its system lacks), else None."""
     import sympy
 
-    from .symbols import t as t_sym
+    from ..declare.symbols import t as t_sym
 
     system = getattr(item, "system", None)
     if system is None or not hasattr(system, "state_functions"):

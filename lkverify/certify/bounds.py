@@ -93,12 +93,12 @@ import numpy as np
 import sympy
 from flint import arb
 
-from .errors import InputError
+from ..errors import InputError
 from .intervals import (  # the one SymPy → arb converter, its ball primitives and outward rounding
     _JUMPS, _NAN, _ONE, _UNIT, _ZERO, _abs, _acos, _cos, _cosh, _heaviside, _increasing, _ipow, _log, _max,
     _min, _powgen, _real_dummies, _rpow_neg, _rpow_pos, _sgn, _sin, _sq, _sqrt, _sqrt_nn, _sympy_number_ball,
     compile_program, float_down, float_up, to_ball)
-from .status import Status
+from ..status import Status
 
 __all__ = [
     "ArbFunction", "BranchProgress", "Chart", "CheckResult", "ConstantResult", "SupResult",
@@ -1261,8 +1261,8 @@ class CheckResult:
     detail: str
 
     def to_result(self, kind: str = "hypothesis"):
-        """This check as a :class:`lkverify.results.Result` (``kind`` as the report needs it)."""
-        from .results import Result
+        """This check as a :class:`lkverify.report.results.Result` (``kind`` as the report needs it)."""
+        from ..report.results import Result
         value = self.margin if self.status is not Status.UNDECIDED else self.bound
         return Result(kind, self.name, self.status, value, self.detail)
 
@@ -1453,8 +1453,8 @@ class ConstantResult:
                 "detail": self.detail}
 
     def to_result(self):
-        """This constant as a :class:`lkverify.results.Result` of kind ``constant``."""
-        from .results import Result
+        """This constant as a :class:`lkverify.report.results.Result` of kind ``constant``."""
+        from ..report.results import Result
         value = self.certified if self.status is Status.CERTIFIED else self.estimate
         return Result("constant", self.name, self.status, value, self.detail)
 
@@ -1994,7 +1994,7 @@ def _elementary(axis: str, a) -> sympy.Matrix:
 def rotation_euler(angles=None, *, bound, convention: str = "yzx", reference=None) -> Chart:
     """Rotations by aircraft angles roll φ, pitch θ, yaw ψ, each in [−bound, bound].
 
-    Conventions as in :mod:`lkverify.rigidbody` (body-to-base matrices):
+    Conventions as in :mod:`lkverify.simulate.rigidbody` (body-to-base matrices):
     ``"yzx"`` (default, GOST 20058-80) ``R = R_y(ψ) R_z(θ) R_x(φ)``;
     ``"zyx"`` ``R = R_z(ψ) R_y(θ) R_x(φ)``; ``"xyz"`` ``R = R_x(φ) R_y(θ) R_z(ψ)``.
 

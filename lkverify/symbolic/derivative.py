@@ -10,7 +10,7 @@ can be named.
 
 >>> import sympy
 >>> from lkverify import Parameters, Vector, System, Equation, Functional, Term, t, xi
->>> from lkverify.functional import window_integral
+>>> from lkverify.declare.functional import window_integral
 >>> P = Parameters(); k = P.scalar("k", positive=True); tau = P.delay("tau")
 >>> x = Vector("x", 1)
 >>> sys = System([Equation(x, [Term(-k * x(t - tau), text="-k x(t-τ)")])], parameters=P)
@@ -30,9 +30,9 @@ import dataclasses
 import sympy
 from sympy.core.function import AppliedUndef
 
-from .functional import Functional, outer_integrals, split_outer
-from .system import System
-from .symbols import t
+from ..declare.functional import Functional, outer_integrals, split_outer
+from ..declare.system import System
+from ..declare.symbols import t
 
 __all__ = ["Block", "DerivativeResult", "derivative_along"]
 

@@ -48,8 +48,8 @@ from flint import arb
 
 from . import bounds
 from .intervals import enclose, float_down, float_up
-from .results import Result
-from .status import Status
+from ..report.results import Result
+from ..status import Status
 
 __all__ = ["DecayModel", "Envelope", "DecayCertificate", "certify_decay", "estimate_decay", "search_parameters",
            "tighten"]

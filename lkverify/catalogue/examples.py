@@ -16,13 +16,13 @@ from collections.abc import Callable, Mapping, Sequence
 
 import numpy as np
 
-from .budget import Deadline
-from .envelope import EnvelopeCheck, cross_check
+from ..options import Deadline
+from ..simulate.envelope import EnvelopeCheck, cross_check
 from .items import Item
-from .results import Report, Result
-from .simulate import MAX_STEPS, Trajectory, check_simulation, simulate
-from .status import Status
-from .system import System
+from ..report.results import Report, Result
+from ..simulate.compile import MAX_STEPS, Trajectory, check_simulation, simulate
+from ..status import Status
+from ..declare.system import System
 
 #: default time budget of ``lkverify simulate`` (all runs of an example together), seconds
 DEFAULT_SIMULATE_BUDGET = 600.0
@@ -295,8 +295,8 @@ def _damping_expr(h):
     """The damping as a SymPy expression in t (accepts an expression or a string, parsed safely)."""
     import sympy
 
-    from .parse import parse_value
-    from .symbols import t
+    from ..declare.parse import parse_value
+    from ..declare.symbols import t
 
     expr = parse_value(h, name="damping", variables={"t": t}) if isinstance(h, str) else sympy.sympify(h)
     if expr.free_symbols - {t}:
@@ -308,7 +308,7 @@ def _tail_integral(h, T: float) -> float:
     """∫_T^∞ h(t) dt, exactly by SymPy (inf when it diverges)."""
     import sympy
 
-    from .symbols import t
+    from ..declare.symbols import t
 
     val = sympy.integrate(_damping_expr(h), (t, sympy.nsimplify(T), sympy.oo))
     return float("inf") if val in (sympy.oo, sympy.zoo) or not val.is_finite else float(val)
@@ -398,7 +398,7 @@ class BoundedNotAttractive(RunClaim):
         import scipy.integrate
         import sympy
 
-        from .symbols import t as tsym
+        from ..declare.symbols import t as tsym
 
         h = sympy.lambdify([tsym], _damping_expr(self.damping), modules="numpy")
         tr = trajectories[self.run]

@@ -1,6 +1,6 @@
 """Lyapunov–Krasovskii functionals and the integral terms they are built from.
 
-A functional is a sum of labelled scalar :class:`~lkverify.terms.Term` objects:
+A functional is a sum of labelled scalar :class:`~lkverify.declare.terms.Term` objects:
 point terms (``f(t)``, ``γ/2 ωᵀΘω``) and integral terms whose weights may
 depend on t and ξ (``∫_{t-τ}^t (λ(ξ+τ-t)+μ) w(x(ξ)) dξ``), products of the two
 (``Lᵀ D⁻¹ ∫ f^ν L dξ``) and double integrals with kernel tails
@@ -49,7 +49,7 @@ def split_outer(integral: sympy.Integral):
     over the others.
 
     >>> import sympy
-    >>> from lkverify.symbols import t, xi, zeta
+    >>> from lkverify.declare.symbols import t, xi, zeta
     >>> f = sympy.Function("f")
     >>> I = sympy.Integral(sympy.Integral(f(zeta), (zeta, xi, t)), (xi, t - 1, t))
     >>> split_outer(I)
@@ -60,7 +60,7 @@ def split_outer(integral: sympy.Integral):
     InputError
         For an indefinite integral (a limit without both ends).
     """
-    from .errors import InputError
+    from ..errors import InputError
 
     limits = integral.limits
     if any(len(limit) != 3 for limit in limits):

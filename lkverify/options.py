@@ -24,6 +24,7 @@ import contextlib
 import math
 import numbers
 import signal
+import sys
 import threading
 import time
 
@@ -125,6 +126,8 @@ class Deadline:
         try:
             if not _active:
                 _saved_handler[0] = signal.signal(signal.SIGALRM, _on_alarm)
+                _saved_hook[0] = sys.unraisablehook
+                sys.unraisablehook = _quiet_unraisable
             _active.append(self)
             _arm()
         finally:
@@ -142,8 +145,22 @@ class Deadline:
                     signal.setitimer(signal.ITIMER_REAL, 0)
                     signal.signal(signal.SIGALRM, _saved_handler[0] or signal.SIG_DFL)
                     _saved_handler[0] = None
+                    sys.unraisablehook = _saved_hook[0] or sys.__unraisablehook__
+                    _saved_hook[0] = None
             finally:
                 _unblock()
+
+
+_saved_hook: list = [None]
+
+
+def _quiet_unraisable(unraisable) -> None:
+    """The alarm may fire inside code that cannot propagate exceptions (a finaliser, a Cython
+    callback): its BudgetExceeded is then dropped silently, and the timer's retry raises it again
+    at the next Python bytecode that can."""
+    if isinstance(unraisable.exc_value, BudgetExceeded):
+        return
+    (_saved_hook[0] or sys.__unraisablehook__)(unraisable)
 
 
 def _block():

@@ -4,16 +4,16 @@ A proof module attaches a :class:`ConstantsJob` to an item.  The job
 
 1. computes the best constants of the proof's bound templates (each a
    supremum over a chart of the state manifold): estimate and certified upper
-   bound (:func:`lkverify.bounds.sup_bound`);
-2. builds the proof's :class:`~lkverify.region.DecayModel` with those constants,
+   bound (:func:`lkverify.certify.bounds.sup_bound`);
+2. builds the proof's :class:`~lkverify.certify.decay.DecayModel` with those constants,
    searches its free parameters (estimated), and proves the result
-   (:func:`~lkverify.region.certify_decay`), shrinking the candidate constants
+   (:func:`~lkverify.certify.decay.certify_decay`), shrinking the candidate constants
    until the proof goes through or the budget is spent;
 3. optionally cross-checks the envelope against simulated trajectories.
 
 The whole job honours one time budget (``budget`` seconds, ``lkverify constants
 --budget``): each phase gets what is left of it, and the job is interrupted
-(``SIGALRM``, :meth:`lkverify.budget.Deadline.enforced`) when it runs out; what
+(``SIGALRM``, :meth:`lkverify.options.Deadline.enforced`) when it runs out; what
 was finished is reported, the rest is ``undecided`` with the phase that was cut.
 
 Every number in the report carries its status; a certified constant is compared
@@ -29,10 +29,10 @@ from collections.abc import Callable, Mapping, Sequence
 import sympy
 
 from . import bounds
-from .budget import BudgetExceeded, Deadline
-from .region import DecayCertificate, DecayModel, certify_decay, estimate_decay, search_parameters, tighten
-from .results import Report, Result
-from .status import Status
+from ..options import BudgetExceeded, Deadline
+from .decay import DecayCertificate, DecayModel, certify_decay, estimate_decay, search_parameters, tighten
+from ..report.results import Report, Result
+from ..status import Status
 
 __all__ = ["Template", "ConstantsJob"]
 
@@ -113,7 +113,7 @@ class ConstantsJob:
         InputError
             An unknown goal, or values outside the hypotheses the model rests on.
         """
-        from .errors import InputError
+        from ..errors import InputError
 
         if isinstance(self.objective, Mapping):
             if goal is not None and goal not in self.objective:

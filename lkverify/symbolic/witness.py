@@ -27,10 +27,10 @@ import scipy.integrate
 import sympy
 from sympy.core.function import AppliedUndef
 
-from .functional import outer_integrals, split_outer
-from .parameters import Kind, Parameters, apply_substitution
-from .states import Frame, Vector
-from .symbols import t
+from ..declare.functional import outer_integrals, split_outer
+from ..declare.parameters import Kind, Parameters, apply_substitution
+from ..declare.states import Frame, Vector
+from ..declare.symbols import t
 
 __all__ = ["Witness", "make_witness", "evaluate", "witness_constant"]
 
@@ -158,7 +158,7 @@ def witness_constant(expr, w: Witness):
 
     Returns ``None`` when the expression keeps integrals or undefined functions; the
     result is exact (rational rotations, ``sin``/``cos`` of rationals) and can be
-    enclosed by :mod:`lkverify.intervals`.
+    enclosed by :mod:`lkverify.certify.intervals`.
     """
     expr = _substitute_parameters(expr, w)
     expr = expr.replace(lambda e: isinstance(e, AppliedUndef) and e.func in w.histories,

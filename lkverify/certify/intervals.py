@@ -6,7 +6,7 @@ small and self-contained (python-flint's ``arb`` and SymPy only):
 :func:`enclose`
     the ball of a SymPy expression, at a stated precision, with the symbols'
     values given as balls.  This is the *only* SymPy → arb converter:
-    :func:`compile_program` (used by :mod:`lkverify.bounds` for branch and
+    :func:`compile_program` (used by :mod:`lkverify.certify.bounds` for branch and
     bound) and :func:`enclose` share one tree walk and one whitelist
     (:data:`SUPPORTED`); a node outside it raises
     :class:`UnsupportedExpression`, it is never approximated.
@@ -50,7 +50,7 @@ import flint
 import sympy
 from flint import arb, fmpq, fmpz
 
-from .errors import InputError
+from ..errors import InputError
 
 __all__ = [
     "DEFAULT_PREC", "SUPPORTED", "Program", "SignResult", "UnsupportedExpression", "compile_program", "enclose",
@@ -687,7 +687,7 @@ def _build(outputs: list[str], em: _Emitter, nvars: int, *,
     if overrides:
         namespace.update(overrides)
     namespace["K"] = tuple(em.consts)
-    code = compile(src, "<lkverify.intervals generated>", "exec")
+    code = compile(src, "<lkverify.certify.intervals generated>", "exec")
     exec(code, namespace)  # noqa: S102 -- source built from our own tokens only
     return namespace["_f"]
 
@@ -895,7 +895,7 @@ def enclose(expr, values: Mapping | None = None, *, prec: int | None = DEFAULT_P
     >>> enclose(sympy.gamma(x), {x: 2})  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    lkverify.intervals.UnsupportedExpression: cannot enclose gamma (in gamma(x)) ...
+    lkverify.certify.intervals.UnsupportedExpression: cannot enclose gamma (in gamma(x)) ...
     """
     expr = _sympify(expr)
     values = {} if values is None else values

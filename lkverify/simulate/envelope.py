@@ -15,7 +15,7 @@ import dataclasses
 
 import numpy as np
 
-from .status import Status
+from ..status import Status
 
 __all__ = ["EnvelopeCheck", "cross_check"]
 

@@ -5,7 +5,7 @@ A state ``x`` of dimension n is n undefined SymPy functions; ``x(t)``,
 integral.  Unit vectors (‖s‖ = 1) and orthonormal right-handed frames carry
 their constraints, which identity proofs may use.
 
->>> from lkverify.symbols import t
+>>> from lkverify.declare.symbols import t
 >>> s = UnitVector("s")
 >>> s(t).T
 Matrix([[s_x(t), s_y(t), s_z(t)]])

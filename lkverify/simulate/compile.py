@@ -1,8 +1,8 @@
 """Simulation: the symbolic System integrated numerically.
 
-:func:`compile_system` turns a :class:`~lkverify.system.System` with numeric
+:func:`compile_system` turns a :class:`~lkverify.declare.system.System` with numeric
 parameter values into the right-hand side of a delay differential equation for
-:func:`lkverify.dde.solve_dde`; it is generated from the same symbolic terms the
+:func:`lkverify.simulate.solver.solve_dde`; it is generated from the same symbolic terms the
 proofs use, never retyped:
 
 * delayed values ``x(t − c)`` become rows of the lag array;
@@ -44,19 +44,19 @@ import numpy as np
 import sympy
 from sympy.core.function import AppliedUndef
 
-from .dde import DDESolution, Outcome, solve_dde
-from .errors import InputError
-from .functional import outer_integrals as _outer_integrals
-from .parameters import apply_substitution
-from .symbols import t
-from .system import System
+from .solver import DDESolution, Outcome, solve_dde
+from ..errors import InputError
+from ..declare.functional import outer_integrals as _outer_integrals
+from ..declare.parameters import apply_substitution
+from ..declare.symbols import t
+from ..declare.system import System
 
 __all__ = ["CompiledSystem", "Trajectory", "compile_system", "simulate", "check_simulation", "MAX_STEPS"]
 
 #: The step floor.  Steps are at most ``min(delays)`` long (the method of steps), so a run
 #: needs at least ``(t_end − t0) / min(delays)`` steps: a run needing more than MAX_STEPS is
 #: refused up front (a tiny delay, a huge t_end).  During a run, when the mean of the last
-#: :data:`lkverify.dde.FLOOR_WINDOW` steps falls below ``(t_end − t0) / MAX_STEPS`` the run
+#: :data:`lkverify.simulate.solver.FLOOR_WINDOW` steps falls below ``(t_end − t0) / MAX_STEPS`` the run
 #: stops: a blow-up (``diverged``) if ‖y‖ has grown, else a step collapse (a stiff system).
 MAX_STEPS = 10**7
 
@@ -81,7 +81,7 @@ class _Quad:
 
 @dataclasses.dataclass(frozen=True)
 class CompiledSystem:
-    """A System ready for :func:`lkverify.dde.solve_dde`.
+    """A System ready for :func:`lkverify.simulate.solver.solve_dde`.
 
     Attributes
     ----------
@@ -451,7 +451,7 @@ def _history_function(system: System, history: Mapping[str, object], layout: dic
             fn = h
         else:
             if isinstance(h, str) or (isinstance(h, (list, tuple)) and any(isinstance(x, str) for x in h)):
-                from .parse import parse_value
+                from ..declare.parse import parse_value
 
                 h = [parse_value(x, name=f"history of {s.name}", variables={"t": t}) if isinstance(x, str) else x
                      for x in (h if isinstance(h, (list, tuple)) else [h])]
@@ -525,7 +525,7 @@ def _monitors(system: System, layout: dict) -> dict:
 
 def _check_coefficients(system: System, checked: Mapping, lo: float, hi: float) -> None:
     """Refuse a time-varying coefficient that is not finite (or not real) somewhere on [lo, hi]."""
-    from .parameters import Kind
+    from ..declare.parameters import Kind
 
     grid = np.unique(np.concatenate([np.linspace(lo, hi, 4001), [lo, 0.0, hi]] if lo <= 0 <= hi
                                     else [np.linspace(lo, hi, 4001), [lo, hi]]))
@@ -604,10 +604,10 @@ def simulate(system: System, *, history: Mapping[str, object], t_end: float, val
     values : mapping, optional
         Parameter values (name → value or string); the paper's defaults fill in.
     t0, rtol, atol, method, divergence_bound, max_step, t_eval, progress
-        Passed to :func:`lkverify.dde.solve_dde`.
+        Passed to :func:`lkverify.simulate.solver.solve_dde`.
     integrals : {"auto", "quadrature"}
         See :func:`compile_system`.
-    deadline : lkverify.budget.Deadline, optional
+    deadline : lkverify.options.Deadline, optional
         When it passes the run stops with outcome ``budget`` (incomplete, undecided).
 
     The step floor (:data:`MAX_STEPS` = 1e7): a run that needs more than 1e7 steps

@@ -4,7 +4,7 @@ A proof module declares items; ``lkverify check`` runs them.
 
 >>> import sympy
 >>> from lkverify import Parameters, Vector, System, Equation, Functional, Term, t
->>> from lkverify.claims import DerivativeClaim, Hypothesis
+>>> from lkverify.symbolic.claims import DerivativeClaim, Hypothesis
 >>> P = Parameters(); k = P.scalar("k", default=1)
 >>> x = Vector("x", 1)
 >>> sys = System([Equation(x, [Term(-k * x(t)[0], text="-kx")])], parameters=P)
@@ -24,13 +24,13 @@ import dataclasses
 import sys as _sys
 from collections.abc import Callable, Mapping, Sequence
 
-from .errors import InputError
-from .claims import DerivativeClaim, Hypothesis, IdentityClaim, MatrixHypothesis
-from .functional import Functional
-from .parameters import Parameters
-from .results import Report, Result
-from .status import Status
-from .system import System
+from ..errors import InputError
+from ..symbolic.claims import DerivativeClaim, Hypothesis, IdentityClaim, MatrixHypothesis
+from ..declare.functional import Functional
+from ..declare.parameters import Parameters
+from ..report.results import Report, Result
+from ..status import Status
+from ..declare.system import System
 
 __all__ = ["Item", "Theorem", "Check"]
 
@@ -41,7 +41,7 @@ class Item:
     name: str = ""
     title: str = ""
     paper: str = ""
-    constants = None  # a lkverify.constants.ConstantsJob, for `lkverify constants`
+    constants = None  # a lkverify.certify.constants.ConstantsJob, for `lkverify constants`
 
     @property
     def qualified_name(self) -> str:
@@ -60,7 +60,7 @@ class Item:
         InputError
             The item has no constants job, or the values are bad.
         """
-        from .errors import InputError
+        from ..errors import InputError
 
         if self.constants is None:
             raise InputError(f"{self.qualified_name}: no constants job is declared for this item; "
@@ -135,7 +135,7 @@ class Theorem(Item):
         InputError
             Unknown parameter names or inadmissible values.
         """
-        from .budget import Deadline
+        from ..options import Deadline
 
         progress = progress or (lambda msg: None)
         deadline = Deadline(budget)  # one budget for the whole run: hypotheses and every claim

@@ -63,7 +63,7 @@ import numpy as np
 from scipy.integrate import DOP853, RK45
 from scipy.optimize import brentq
 
-from .errors import InputError
+from ..errors import InputError
 
 __all__ = ["DDESolution", "DenseHistory", "Outcome", "solve_dde"]
 
@@ -706,7 +706,7 @@ def solve_dde(fun: Callable, t_span: tuple[float, float], history, *, lags: Sequ
         (after ``resync``); named by the mapping keys or the functions' names.
     progress : callable, optional
         ``progress(fraction)`` with fraction in (0, 1], called at most 100 times.
-    deadline : lkverify.budget.Deadline, optional
+    deadline : lkverify.options.Deadline, optional
         Checked after every accepted step; once it has passed the run ends with
         ``Outcome.BUDGET`` at the time reached (the solution so far is kept).
     min_mean_step : float, optional

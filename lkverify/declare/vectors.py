@@ -1,7 +1,7 @@
 """Vector algebra on SymPy column matrices: the notation of the papers.
 
 >>> import sympy
->>> from lkverify.vectors import cross, dot, norm_squared
+>>> from lkverify.declare.vectors import cross, dot, norm_squared
 >>> e1, e2 = sympy.Matrix([1, 0, 0]), sympy.Matrix([0, 1, 0])
 >>> cross(e1, e2).T
 Matrix([[0, 0, 1]])

@@ -90,7 +90,7 @@ _DECIMAL_RE = re.compile(
 
 
 try:  # share the package's exception so that callers catching it see ours too
-    from .errors import InputError
+    from ..errors import InputError
 except ImportError:  # pragma: no cover - module loaded outside the package
 
     class InputError(ValueError):  # type: ignore[no-redef]

@@ -35,8 +35,8 @@ from sympy.polys.groebnertools import groebner
 from sympy.polys.orderings import lex
 from sympy.polys.rings import PolyRing
 
-from .budget import Deadline
-from .functional import split_outer
+from ..options import Deadline
+from ..declare.functional import split_outer
 
 __all__ = ["Canonicalizer", "NormalForms"]
 

@@ -81,11 +81,11 @@ import numpy as np
 import sympy
 from flint import arb, fmpq, fmpq_mat
 
-from .budget import Deadline
-from .errors import InputError
+from ..options import Deadline
+from ..errors import InputError
 from .intervals import enclose, float_down, float_up, lower_fraction, sign_of, to_ball, upper_fraction
-from .results import Result
-from .status import Status
+from ..report.results import Result
+from ..status import Status
 
 __all__ = [
     "ConditionResult", "Enclosure", "Estimate", "best_quadratic_upper_bound", "check_lyapunov_matrix",
@@ -325,7 +325,7 @@ class ConditionResult:
         }
 
     def to_result(self, kind: str = "hypothesis") -> Result:
-        """This verdict as a :class:`lkverify.results.Result` row (value: the margin's lower end, rounded down)."""
+        """This verdict as a :class:`lkverify.report.results.Result` row (value: the margin's lower end, rounded down)."""
         value = None if self.margin is None or self.margin.lo is None else float_down(self.margin.lo)
         return Result(kind, self.name, self.status, value, self.detail)
 
