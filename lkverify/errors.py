@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-__all__ = ["InputError", "LkverifyError"]
+__all__ = ["InputError", "LkverifyError", "UnsupportedInput"]
 
 
 class LkverifyError(Exception):
@@ -11,3 +11,10 @@ class LkverifyError(Exception):
 
 class InputError(LkverifyError, ValueError):
     """Bad user input; the message is one line: what was expected, what came, how to fix it."""
+
+
+class UnsupportedInput(LkverifyError, ValueError):
+    """Input lkverify cannot handle (yet): a model, an expression or an option outside what it supports.
+
+    Never reported as ``failed``: nothing was refuted.  The message says what is supported.
+    """

@@ -21,6 +21,7 @@ line accepts budgets up to :data:`MAX_BUDGET_SECONDS` and refuses larger ones.
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import math
 import numbers
 import signal
@@ -28,7 +29,7 @@ import sys
 import threading
 import time
 
-__all__ = ["BudgetExceeded", "Deadline", "MAX_BUDGET_SECONDS", "TIMER_CAP_SECONDS", "RETRY_SECONDS"]
+__all__ = ["Accuracy", "Budget", "BudgetExceeded", "Deadline", "MAX_BUDGET_SECONDS", "TIMER_CAP_SECONDS", "RETRY_SECONDS"]
 
 #: the largest ``--budget`` the command line accepts (seconds, about 11.6 days)
 MAX_BUDGET_SECONDS = 1e6
@@ -188,3 +189,88 @@ def _on_alarm(signum, frame):
     _arm()  # re-arm: early wake-up of a capped timer, or the retry while an expired block is unwinding
     if expired:
         raise BudgetExceeded(expired[0].message())
+
+
+# ---------------------------------------------------------------------------------------------
+# option objects: one place for what every long job takes
+# ---------------------------------------------------------------------------------------------
+
+@dataclasses.dataclass(frozen=True)
+class Budget:
+    """How much work a job may do before it ends ``undecided``.
+
+    Parameters
+    ----------
+    seconds : float or None, default 60
+        Wall-clock seconds for the whole job; ``None`` for no limit.
+    boxes : int or None, default None
+        For branch and bound: the most boxes examined (``None``: the job's default).
+
+    Examples
+    --------
+    >>> Budget(seconds=5).deadline().seconds
+    5.0
+    >>> Budget(seconds=-1)
+    Traceback (most recent call last):
+    ...
+    lkverify.errors.InputError: Budget.seconds: expected a positive number of seconds or None, got -1
+    """
+
+    seconds: float | None = 60.0
+    boxes: int | None = None
+
+    def __post_init__(self):
+        from .errors import InputError
+
+        s = self.seconds
+        if s is not None and (isinstance(s, bool) or not isinstance(s, numbers.Real) or not s > 0):
+            raise InputError(f"Budget.seconds: expected a positive number of seconds or None, got {s!r}")
+        b = self.boxes
+        if b is not None and (isinstance(b, bool) or not isinstance(b, numbers.Integral) or b < 1):
+            raise InputError(f"Budget.boxes: expected a positive integer or None, got {b!r}")
+
+    def deadline(self) -> Deadline:
+        """A :class:`Deadline` starting now for :attr:`seconds`."""
+        return Deadline(self.seconds)
+
+
+@dataclasses.dataclass(frozen=True)
+class Accuracy:
+    """When a certified bound is tight enough, and how its estimate is searched.
+
+    Parameters
+    ----------
+    rel_gap : float, default 1e-2
+        Stop when ``certified − estimate ≤ rel_gap·|estimate|``.
+    abs_gap : float, default 0
+        Or when ``certified − estimate ≤ abs_gap`` (needed when the value is 0).
+    starts : int, default 8
+        Local optimisations started by the estimator.
+    seed : int, default 0
+        Seed of the estimator's random starts (results are reproducible).
+
+    Examples
+    --------
+    >>> Accuracy(rel_gap=1e-3).starts
+    8
+    """
+
+    rel_gap: float = 1e-2
+    abs_gap: float = 0.0
+    starts: int = 8
+    seed: int = 0
+
+    def __post_init__(self):
+        from .errors import InputError
+
+        problems = []
+        for name in ("rel_gap", "abs_gap"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, numbers.Real) or not v >= 0 or math.isinf(v):
+                problems.append(f"{name}: expected a finite number ≥ 0, got {v!r}")
+        if isinstance(self.starts, bool) or not isinstance(self.starts, numbers.Integral) or self.starts < 1:
+            problems.append(f"starts: expected a positive integer, got {self.starts!r}")
+        if isinstance(self.seed, bool) or not isinstance(self.seed, numbers.Integral):
+            problems.append(f"seed: expected an integer, got {self.seed!r}")
+        if problems:
+            raise InputError("Accuracy: " + "; ".join(problems))

@@ -9,6 +9,7 @@ A :class:`Report` is the JSON object of the design card::
 from __future__ import annotations
 
 import dataclasses
+import enum
 import json
 import math
 
@@ -16,9 +17,32 @@ import sympy
 
 from ..status import Status
 
-__all__ = ["Result", "Report", "jsonable"]
+__all__ = ["Kind", "Result", "Report", "jsonable"]
 
-KINDS = ("hypothesis", "identity", "constant", "region", "envelope", "simulation")
+
+class Kind(str, enum.Enum):
+    """What a result is about (the ``kind`` of the JSON card).
+
+    >>> Kind("identity") is Kind.IDENTITY
+    True
+    >>> str(Kind.BOUND)
+    'bound'
+    """
+
+    HYPOTHESIS = "hypothesis"
+    IDENTITY = "identity"
+    BOUND = "bound"
+    CONSTANT = "constant"
+    REGION = "region"
+    ENVELOPE = "envelope"
+    SIMULATION = "simulation"
+    LINEAR = "linear"
+
+    def __str__(self) -> str:
+        return self.value
+
+
+KINDS = tuple(k.value for k in Kind)
 
 
 def jsonable(value):
@@ -53,8 +77,8 @@ class Result:
 
     Attributes
     ----------
-    kind : str
-        One of ``hypothesis``, ``identity``, ``constant``, ``region``, ``envelope``, ``simulation``.
+    kind : Kind
+        What the result is about; a string such as ``"hypothesis"`` is converted.
     name : str
     status : Status
     value : object
@@ -63,20 +87,22 @@ class Result:
         One readable sentence.
     """
 
-    kind: str
+    kind: Kind
     name: str
     status: Status
     value: object = None
     detail: str = ""
 
     def __post_init__(self):
-        if self.kind not in KINDS:
-            raise ValueError(f"result kind must be one of {KINDS}, got {self.kind!r}")
+        if not isinstance(self.kind, Kind):
+            if self.kind not in KINDS:
+                raise ValueError(f"result kind: expected one of {', '.join(KINDS)}, got {self.kind!r}")
+            object.__setattr__(self, "kind", Kind(self.kind))
         if not isinstance(self.status, Status):
-            raise TypeError(f"status must be a Status, got {self.status!r}")
+            raise TypeError(f"result status: expected a Status, got {self.status!r}")
 
     def to_json(self) -> dict:
-        return {"kind": self.kind, "name": self.name, "status": self.status.value,
+        return {"kind": self.kind.value, "name": self.name, "status": self.status.value,
                 "value": jsonable(self.value), "detail": self.detail}
 
 
