@@ -15,6 +15,7 @@ import platform
 import time
 
 from lkverify.certify import bounds
+from lkverify.options import Accuracy, Budget
 from lkverify.catalogue.loader import find_items
 
 
@@ -24,8 +25,8 @@ def main() -> None:
     values = th.parameters.resolve({}, use_defaults=True)
     for tpl in th.constants.templates:
         t0 = time.perf_counter()
-        res = bounds.sup_bound(tpl.expr(values), tpl.box(values), rel_gap=1e-2, budget_seconds=60,
-                               enclosure="mean-value")
+        res = bounds.sup_bound(tpl.expr(values), tpl.box(values), accuracy=Accuracy(rel_gap=1e-2),
+                               budget=Budget(seconds=60), enclosure="mean-value")
         print(f"constant {tpl.name:8s} estimate {res.estimate:.6g}  certified ≤ {res.certified:.6g}  "
               f"gap {res.gap:.2%}  status {res.status.value}  {res.boxes} boxes  {time.perf_counter() - t0:.2f} s")
     t0 = time.perf_counter()

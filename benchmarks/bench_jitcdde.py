@@ -83,7 +83,7 @@ import numpy as np
 import sympy
 
 from lkverify.catalogue.loader import find_items
-from lkverify.simulate.compile import compile_system, simulate
+from lkverify.simulate import StepControl, compile_system, simulate
 
 CASES = [("aleksandrov2023.fig1", 0), ("aleksandrov2026.example", 0)]
 N_GRID = 2001
@@ -171,7 +171,7 @@ def run_lkverify(case: Case, grid, rtol, atol):
     """(states on grid, total s, integration s)."""
     start = time.perf_counter()
     tr = simulate(case.run.system, history=case.run.history, t_end=float(grid[-1]), values=case.run.values,
-                  rtol=rtol, atol=atol, t_eval=grid)
+                  step=StepControl(rtol=rtol, atol=atol), t_eval=grid)
     total = time.perf_counter() - start
     if tr.outcome.value != "success" or len(tr.t) != len(grid):
         raise RuntimeError(f"lkverify on {case.name} at rtol={rtol:g}: {tr.outcome.value} {tr.message}")
@@ -307,7 +307,7 @@ def profile_simulate(case: Case, grid, rtol, atol, top: int = 10) -> str:
     prof = cProfile.Profile()
     prof.enable()
     simulate(case.run.system, history=case.run.history, t_end=float(grid[-1]), values=case.run.values,
-                  rtol=rtol, atol=atol, t_eval=grid)
+                  step=StepControl(rtol=rtol, atol=atol), t_eval=grid)
     prof.disable()
     stats = pstats.Stats(prof)
     total = max(ct for (_, _, name), (_, _, _, ct, _) in stats.stats.items() if name == "simulate")

@@ -1,36 +1,61 @@
 """lkverify: check Lyapunov–Krasovskii stability proofs.
 
-The public API: declare parameters, states, a system and a functional; derive
-V̇ along the system; check identity claims; run catalogue items.  The
-numeric layers are modules of their own: :mod:`lkverify.simulate.compile` (and the
-integrator :mod:`lkverify.simulate.solver`), :mod:`lkverify.certify.bounds` (certified constants),
-:mod:`lkverify.certify.conditions` (positivity), :mod:`lkverify.certify.decay` (parameters,
-region and envelope), :mod:`lkverify.simulate.rigidbody`, :mod:`lkverify.simulate.envelope`.
+The pipeline is in the subpackages, one per stage (data flows one way):
+
+:mod:`lkverify.declare`
+    the vocabulary: parameters, states, terms, systems, functionals;
+:mod:`lkverify.symbolic`
+    the exact V̇ along a system, identity claims proved or refuted term by term;
+:mod:`lkverify.certify`
+    one interval layer (python-flint arb): hypotheses, suprema and constants, matrix
+    and form positivity, LMIs, decay models, regions and envelopes;
+:mod:`lkverify.simulate`
+    the same system integrated, experiments and envelope checks;
+:mod:`lkverify.catalogue`
+    items (theorems, checks, examples) and the loading of proof files;
+:mod:`lkverify.report` and :mod:`lkverify.cli`
+    results, JSON, text and the command line.
+
+This module re-exports what a proof file needs, so that a proof imports from
+``lkverify`` alone.
 """
 
-from .options import BudgetExceeded, Deadline
-from .symbolic.claims import DerivativeClaim, Hypothesis, IdentityClaim
-from .symbolic.derivative import Block, DerivativeResult, derivative_along
-from .errors import InputError, LkverifyError
+from .catalogue.items import Check, Item, Link, Theorem
+from .certify.hypotheses import Hypothesis, MatrixHypothesis
 from .declare.functional import Functional, memory_integral, tail_integral, window_integral
-from .symbolic.identity import IdentityResult, TermDifference, check_identity
-from .catalogue.items import Check, Item, Theorem
-from .declare.parameters import Kind, ParameterSpec, Parameters
-from .report.results import Report, Result
+from .declare.parameters import ParameterKind, Parameters, ParameterSpec
+from .declare.rigidbody import (distance_sum, euler_equation, gyroscopic_term, poisson_equation, poisson_equations,
+                                restoring_torque, restoring_torque_rate)
 from .declare.states import Frame, UnitVector, Vector
-from .status import Status
 from .declare.symbols import t, xi, zeta
 from .declare.system import Equation, System
 from .declare.terms import Term
 from .declare.vectors import cross, dot, norm, norm_power, norm_squared, quad
+from .errors import InputError, LkverifyError, UnsupportedInput
+from .options import Accuracy, Budget, BudgetExceeded, Deadline
+from .report.results import Kind, Report, Result
+from .status import Status
+from .symbolic.claims import DerivativeClaim, IdentityClaim
+from .symbolic.derivative import Block, DerivativeResult, derivative_along
+from .symbolic.identity import IdentityResult, TermDifference, check_identity
+from .catalogue.examples import Example
+from .certify.constants import ConstantsJob, Template
+from .simulate import (BoundedNotAttractive, Converges, DoesNotConverge, EnvelopeSpec, FasterThan, FromValues, Run,
+                       Sensitive, Series, SmootherThan, StepControl)
 
 __all__ = [
-    "Block", "BudgetExceeded", "Check", "Deadline", "DerivativeClaim", "DerivativeResult", "Equation", "Frame",
-    "Functional", "Hypothesis", "IdentityClaim", "IdentityResult", "InputError", "Item", "Kind",
-    "LkverifyError", "ParameterSpec", "Parameters", "Report", "Result", "Status", "System", "Term",
-    "TermDifference", "Theorem", "UnitVector", "Vector", "check_identity", "cross",
-    "derivative_along", "dot", "memory_integral", "norm", "norm_power", "norm_squared", "quad",
-    "t", "tail_integral", "window_integral", "xi", "zeta",
+    "Accuracy", "Block", "Budget", "BudgetExceeded", "Check", "Deadline", "DerivativeClaim", "DerivativeResult",
+    "Equation", "Frame", "Functional", "Hypothesis", "IdentityClaim", "IdentityResult", "InputError", "Item",
+    "Kind", "Link", "LkverifyError", "MatrixHypothesis", "ParameterKind", "ParameterSpec", "Parameters", "Report",
+    "Result", "Status", "System", "Term", "TermDifference", "Theorem", "UnitVector", "UnsupportedInput",
+    "Vector", "check_identity", "cross", "derivative_along", "dot", "memory_integral", "norm", "norm_power",
+    "norm_squared", "quad", "t", "tail_integral", "window_integral", "xi", "zeta",
+    # rigid bodies (declare.rigidbody)
+    "distance_sum", "euler_equation", "gyroscopic_term", "poisson_equation", "poisson_equations", "restoring_torque",
+    "restoring_torque_rate",
+    # examples, runs and claims about them (simulate), constants jobs (certify)
+    "BoundedNotAttractive", "ConstantsJob", "Converges", "DoesNotConverge", "EnvelopeSpec", "Example", "FasterThan",
+    "FromValues", "Run", "Sensitive", "Series", "SmootherThan", "StepControl", "Template",
 ]
 
 __version__ = "0.1.0"

@@ -33,8 +33,9 @@ from pathlib import Path
 
 from .options import MAX_BUDGET_SECONDS, BudgetExceeded
 from .catalogue.loader import LOAD_LIMIT_SECONDS, catalogue, find_items
-from .errors import InputError
-from .declare.parse import parse_assignment
+from .errors import InputError, UnsupportedInput
+from .declare.parse import parse_assignment, parse_value
+from .declare.symbols import t as _t, zeta as _zeta
 
 #: exit code of an unexpected exception (a bug in lkverify); see the module docstring
 EXIT_INTERNAL = 3
@@ -136,8 +137,8 @@ def main(argv=None) -> int:
         return exc.code if isinstance(exc.code, int) else 2
     try:
         return _dispatch(args)
-    except InputError as exc:
-        print(f"lkverify: error: {_one_line(exc)}", file=sys.stderr)
+    except (InputError, UnsupportedInput) as exc:  # bad input, or input lkverify does not handle: exit 2
+        print(f"lkverify: error: {_one_line(exc)}{_flag_hint(exc)}", file=sys.stderr)
         return 2
     except BudgetExceeded as exc:  # a budget that no result could absorb
         print(f"lkverify: undecided: {_one_line(exc)}", file=sys.stderr)
@@ -160,6 +161,19 @@ def main(argv=None) -> int:
         return EXIT_INTERNAL
 
 
+#: the command-line option for each topic of an InputError (the library names no flag)
+FLAGS = {"history": "--history", "parameters": "--set", "t_end": "--t-end", "budget": "--budget"}
+
+
+def _flag_hint(exc) -> str:
+    """``; on the command line: --history omega=[…]`` for an InputError that says what it is about."""
+    flag = FLAGS.get(getattr(exc, "topic", None))
+    if flag is None:
+        return ""
+    example = getattr(exc, "example", None)
+    return f"; on the command line: {flag} {example}" if example else f"; on the command line: {flag}"
+
+
 def _one_line(exc) -> str:
     return " ".join(str(exc).split()) or type(exc).__name__
 
@@ -174,7 +188,7 @@ def _dispatch(args) -> int:
     if args.command in (None, "report"):
         return _report(json_out=getattr(args, "json", False))
     if args.command == "check":
-        values = dict(parse_assignment(s) for s in args.sets)
+        values = _set_values(args.sets)
         items = find_items(args.item, load_limit=args.load_limit)
         say = _progress(not args.json and sys.stderr.isatty())
         reports = [item.run(values, budget=args.budget, progress=say) for item in items]
@@ -184,6 +198,15 @@ def _dispatch(args) -> int:
     if args.command == "constants":
         return _constants(args)
     return 0  # pragma: no cover
+
+
+def _set_values(sets) -> dict:
+    """``--set NAME=VALUE`` arguments parsed (the messages name ``--set``); admissibility is the item's."""
+    values = {}
+    for text in sets:
+        name, value = parse_assignment(text)
+        values[name] = parse_value(value, name=name, option="--set", variables={"t": _t, "zeta": _zeta})
+    return values
 
 
 def check_output_path(path: str, *, option: str = "--plot") -> Path:
@@ -248,7 +271,7 @@ def _simulate(args) -> int:
         raise InputError(f"--t-end: expected a positive finite time, got {args.t_end}")
     if args.plot is not None:
         check_output_path(args.plot)
-    values = dict(parse_assignment(s) for s in args.sets)
+    values = _set_values(args.sets)
     histories = {}
     for h in args.histories:
         name, text = parse_assignment(h, option="--history")
@@ -285,7 +308,7 @@ def _simulate(args) -> int:
 def _constants(args) -> int:
     if args.plot is not None:
         check_output_path(args.plot)
-    values = dict(parse_assignment(s) for s in args.sets)
+    values = _set_values(args.sets)
     items = [it for it in find_items(args.item, load_limit=args.load_limit) if it.constants is not None]
     if not items:
         raise InputError(f"{args.item}: no constants job is declared for it; items with one: "

@@ -29,6 +29,8 @@ import sys
 import threading
 import time
 
+from .errors import InputError
+
 __all__ = ["Accuracy", "Budget", "BudgetExceeded", "Deadline", "MAX_BUDGET_SECONDS", "TIMER_CAP_SECONDS", "RETRY_SECONDS"]
 
 #: the largest ``--budget`` the command line accepts (seconds, about 11.6 days)
@@ -74,7 +76,7 @@ class Deadline:
     def __init__(self, seconds: float | None):
         if seconds is not None:
             if isinstance(seconds, bool) or not isinstance(seconds, numbers.Real) or not seconds > 0:
-                raise ValueError(f"budget: expected a positive number of seconds (or None for no limit), "
+                raise InputError(f"budget: expected a positive number of seconds (or None for no limit), "
                                  f"got {seconds!r}")
             seconds = None if math.isinf(seconds) else float(seconds)
         self.seconds = seconds

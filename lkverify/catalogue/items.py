@@ -4,7 +4,7 @@ A proof module declares items; ``lkverify check`` runs them.
 
 >>> import sympy
 >>> from lkverify import Parameters, Vector, System, Equation, Functional, Term, t
->>> from lkverify.symbolic.claims import DerivativeClaim, Hypothesis
+>>> from lkverify import DerivativeClaim, Hypothesis
 >>> P = Parameters(); k = P.scalar("k", default=1)
 >>> x = Vector("x", 1)
 >>> sys = System([Equation(x, [Term(-k * x(t)[0], text="-kx")])], parameters=P)
@@ -25,14 +25,15 @@ import sys as _sys
 from collections.abc import Callable, Mapping, Sequence
 
 from ..errors import InputError
-from ..symbolic.claims import DerivativeClaim, Hypothesis, IdentityClaim, MatrixHypothesis
+from ..certify.hypotheses import Hypothesis, MatrixHypothesis
+from ..symbolic.claims import DerivativeClaim, IdentityClaim
 from ..declare.functional import Functional
 from ..declare.parameters import Parameters
 from ..report.results import Report, Result
 from ..status import Status
 from ..declare.system import System
 
-__all__ = ["Item", "Theorem", "Check"]
+__all__ = ["Check", "Item", "Link", "Theorem", "theorem_verdict"]
 
 
 class Item:
@@ -94,7 +95,7 @@ class Theorem(Item):
                  hypotheses: Sequence[Hypothesis] = (), claims: Sequence = (), title: str = "",
                  unchecked: Sequence[str] = (), paper: str = "", constants=None):
         if not name.isidentifier():
-            raise ValueError(f"item name must be an identifier, got {name!r}")
+            raise InputError(f"item name must be an identifier, got {name!r}")
         problems = []
         for c in claims:
             if not isinstance(c, (DerivativeClaim, IdentityClaim)):
@@ -345,14 +346,17 @@ class Check(Item):
     """An item made of direct checks: callables ``check(values) → list of Result``.
 
     Used for statements of a proof that are not identities, e.g. a printed
-    inequality step refuted at an exact witness.
+    inequality step refuted at an exact witness.  ``constants`` is what
+    ``lkverify constants`` runs for the item (a ConstantsJob, or an object with
+    its ``goals``, ``run`` and ``plot``), as for :class:`Theorem`.
     """
 
     def __init__(self, name: str, *, parameters: Parameters, checks: Sequence[Callable], title: str = "",
-                 paper: str = "", relevant: Sequence[str] | None = None):
+                 paper: str = "", relevant: Sequence[str] | None = None, constants=None):
         if not name.isidentifier():
-            raise ValueError(f"item name must be an identifier, got {name!r}")
+            raise InputError(f"item name must be an identifier, got {name!r}")
         self.name, self.title, self.paper = name, title, paper
+        self.constants = constants
         self.relevant = tuple(relevant) if relevant is not None else None
         self._parameters = parameters
         self.checks = tuple(checks)

@@ -1,10 +1,15 @@
-"""Loading proof files: the catalogue's and a user's go through the same loader.
+"""Loading proof files: the catalogue's packages and a user's files go through the same checks.
 
-A proof file is a Python module (loaded by path, as pytest collects test
-files) whose module-level :class:`~lkverify.catalogue.items.Item` objects are its items.
-``PAPER = "aleksandrov2023"`` names the paper; otherwise the file's stem does.
-The catalogue's proof files ship inside the installed package as
-``lkverify.proofs`` (the repository's ``proofs/`` folder).
+A proof module's module-level :class:`~lkverify.catalogue.items.Item` objects are its
+items.  ``PAPER = "aleksandrov2023"`` names the paper; otherwise the module's name does.
+
+The catalogue's proofs are the packages of :mod:`lkverify.proofs` (the repository's
+``proofs/`` folder, installed inside the distribution), one per paper, one module per
+theorem, example or audit; the package's ``__init__`` re-exports its items.  They are
+imported under their real names (``importlib.import_module("lkverify.proofs.aleksandrov2023")``),
+so ``lkverify.proofs.aleksandrov2023.theorem3`` *is* the catalogue's item: one import path
+per item.  A user's proof file (a single module) is loaded by path, as pytest collects test
+files; a path inside :mod:`lkverify.proofs` is imported under its real name.
 
 A proof file is Python: loading it executes it with the user's permissions,
 like any script.  Loading is bounded by a time limit (:data:`LOAD_LIMIT_SECONDS`
@@ -13,6 +18,8 @@ the ``--budget`` of the job run afterwards.  A file that calls ``sys.exit``,
 does not finish loading in time, declares two items with the same name, or
 declares a theorem whose functional or hypotheses use states or symbols its
 system does not have is refused with an :class:`~lkverify.errors.InputError`.
+Items a user file imports from the catalogue (to build on them) stay the catalogue's:
+they are not items of the user's file.
 """
 
 from __future__ import annotations
@@ -20,8 +27,9 @@ from __future__ import annotations
 import dataclasses
 import difflib
 import hashlib
-import importlib.resources
+import importlib
 import importlib.util
+import pkgutil
 import sys
 from pathlib import Path
 
@@ -31,15 +39,31 @@ from ..options import BudgetExceeded, Deadline
 from ..errors import InputError
 from .items import Item
 
-__all__ = ["ProofFile", "load_proof_file", "catalogue", "find_items", "LOAD_LIMIT_SECONDS"]
+__all__ = ["ProofFile", "load_proof_file", "load_proof_module", "catalogue", "find_items", "LOAD_LIMIT_SECONDS",
+           "PROOFS_PACKAGE"]
 
 #: default time limit for loading (importing) one proof file, in seconds
 LOAD_LIMIT_SECONDS = 60.0
 
 
+#: the package holding the catalogue's proofs, one subpackage per paper
+PROOFS_PACKAGE = "lkverify.proofs"
+
+
 @dataclasses.dataclass(frozen=True)
 class ProofFile:
-    """A loaded proof module: its paper name and items by name."""
+    """A loaded proof module: its paper name and items by name.
+
+    Attributes
+    ----------
+    paper : str
+    path : Path
+        The module's file (a package's ``__init__.py``).
+    items : dict
+        Item name → item, in declaration order.
+    doc : str
+        The module's docstring.
+    """
 
     paper: str
     path: Path
@@ -47,12 +71,19 @@ class ProofFile:
     doc: str = ""
 
 
-def _proofs_dir() -> Path:
-    return Path(str(importlib.resources.files("lkverify.proofs")))
+def _proofs_package():
+    return importlib.import_module(PROOFS_PACKAGE)
+
+
+def _proofs_dirs() -> list[Path]:
+    return [Path(p).resolve() for p in _proofs_package().__path__]
 
 
 def load_proof_file(path, *, load_limit: float | None = LOAD_LIMIT_SECONDS) -> ProofFile:
     """Load a proof file by path (this executes it as Python).
+
+    A file inside :mod:`lkverify.proofs` (a catalogue module) is imported under its real
+    module name, never a second time under another.
 
     Parameters
     ----------
@@ -74,35 +105,88 @@ def load_proof_file(path, *, load_limit: float | None = LOAD_LIMIT_SECONDS) -> P
         raise InputError(f"{path}: {what}; expected a catalogue name (see `lkverify list`) or a path to a .py proof file")
     if path.suffix != ".py":
         raise InputError(f"{path}: expected a Python proof file ending in .py")
+    real = _catalogue_module_name(path)
+    if real is not None:
+        return load_proof_module(real, load_limit=load_limit)
     digest = hashlib.sha1(str(path.resolve()).encode()).hexdigest()[:10]
     modname = f"lkverify_proof_{path.stem}_{digest}"
     if modname in sys.modules:
         module = sys.modules[modname]
     else:
         module = _execute(path, modname, load_limit)
-    paper = getattr(module, "PAPER", path.stem)
+    try:
+        return _proof_file(module, path, path.stem, foreign=_catalogue_items())
+    except InputError:
+        del sys.modules[modname]
+        raise
+
+
+def load_proof_module(name: str, *, load_limit: float | None = LOAD_LIMIT_SECONDS) -> ProofFile:
+    """Import a proof module or package by its module name (``"lkverify.proofs.aleksandrov2023"``).
+
+    The same checks as :func:`load_proof_file` (time limit, ``sys.exit``, duplicate names,
+    consistency); the module is imported once and stays in ``sys.modules`` under ``name``.
+
+    Raises
+    ------
+    InputError
+        As :func:`load_proof_file`.
+    """
+    module = sys.modules.get(name)
+    if module is None:
+        module = _import(name, load_limit)
+    path = Path(module.__file__)
+    return _proof_file(module, path, name.rpartition(".")[2])
+
+
+def _catalogue_module_name(path: Path) -> str | None:
+    """The real module name of a file inside :mod:`lkverify.proofs`, else None."""
+    resolved = path.resolve()
+    for root in _proofs_dirs():
+        try:
+            rel = resolved.relative_to(root)
+        except ValueError:
+            continue
+        parts = list(rel.with_suffix("").parts)
+        if parts and parts[-1] == "__init__":
+            parts.pop()
+        if not parts or not all(p.isidentifier() for p in parts):
+            return None
+        return ".".join([PROOFS_PACKAGE, *parts])
+    return None
+
+
+def _catalogue_items() -> set:
+    """The ids of the items of every catalogue module imported so far (a user file may import them)."""
+    prefix = PROOFS_PACKAGE + "."
+    return {id(v) for name, mod in list(sys.modules.items()) if name.startswith(prefix) and mod is not None
+            for v in vars(mod).values() if isinstance(v, Item)}
+
+
+def _proof_file(module, path: Path, default_paper: str, *, foreign=frozenset()) -> ProofFile:
+    """The items of a loaded module (its own, not the ``foreign`` ones), checked."""
+    paper = getattr(module, "PAPER", default_paper)
     items: dict = {}
     where: dict = {}
     for var, value in vars(module).items():
-        if not isinstance(value, Item):
+        if not isinstance(value, Item) or id(value) in foreign:
             continue
         if value.name in items:
             if items[value.name] is value:
                 continue  # the same item under two variable names
-            del sys.modules[modname]
             raise InputError(f"{path}: two items are named {value.name!r} (variables {where[value.name]} and "
                              f"{var}); expected one name per item; rename one of them")
-        value.paper = paper
         items[value.name] = value
         where[value.name] = var
     if not items:
-        del sys.modules[modname]
         raise InputError(f"{path}: declares no item; expected module-level Theorem objects")
     for item in items.values():
         problem = _inconsistency(item)
         if problem:
-            del sys.modules[modname]
             raise InputError(f"{path}: item {item.name}: {problem}")
+    for item in items.values():
+        if not item.paper:  # items constructed with paper=... keep it
+            item.paper = paper
     return ProofFile(paper, path, items, (module.__doc__ or "").strip())
 
 
@@ -115,27 +199,39 @@ def _execute(path: Path, modname: str, load_limit: float | None):
     spec = importlib.util.spec_from_file_location(modname, path)
     module = importlib.util.module_from_spec(spec)
     sys.modules[modname] = module
+    try:
+        _guarded(lambda: spec.loader.exec_module(module), path, load_limit)
+    except InputError:
+        del sys.modules[modname]
+        raise
+    return module
+
+
+def _import(name: str, load_limit: float | None):
+    """``importlib.import_module(name)`` within the time limit; every failure is an InputError."""
+    box = []
+    _guarded(lambda: box.append(importlib.import_module(name)), name, load_limit)
+    return box[0]
+
+
+def _guarded(load, where, load_limit: float | None) -> None:
+    """Run ``load()`` under the load limit, turning every way a proof file can fail into an InputError."""
     limit = Deadline(load_limit)
     try:
         with limit.enforced():
-            spec.loader.exec_module(module)
+            load()
     except InputError as exc:
-        del sys.modules[modname]
         raise InputError(_one_line(exc)) from exc
     except BudgetExceeded:
-        del sys.modules[modname]
-        raise InputError(f"{path}: the proof file did not finish loading within the load limit of "
+        raise InputError(f"{where}: the proof file did not finish loading within the load limit of "
                          f"{load_limit:g} s (an endless loop or a long computation at import?); expected a "
                          f"file that only declares items; raise the limit with --load-limit SECONDS") from None
     except SystemExit as exc:
-        del sys.modules[modname]
-        raise InputError(f"{path}: the proof file called sys.exit({exc.code!r}) while loading; expected a file "
+        raise InputError(f"{where}: the proof file called sys.exit({exc.code!r}) while loading; expected a file "
                          f"that only declares items; remove the exit call (or guard it with "
                          f"if __name__ == \"__main__\")") from None
     except Exception as exc:  # noqa: BLE001 - a user's file failing to import is bad input
-        del sys.modules[modname]
-        raise InputError(f"{path}: the proof file failed to load: {type(exc).__name__}: {_one_line(exc)}") from exc
-    return module
+        raise InputError(f"{where}: the proof file failed to load: {type(exc).__name__}: {_one_line(exc)}") from exc
 
 
 def _inconsistency(item) -> str | None:
@@ -210,9 +306,13 @@ def _is_parameter_function(func, params) -> bool:
 
 
 def catalogue(*, load_limit: float | None = LOAD_LIMIT_SECONDS) -> list[ProofFile]:
-    """Every proof file shipped with lkverify, in name order."""
-    return [load_proof_file(p, load_limit=load_limit) for p in sorted(_proofs_dir().glob("*.py"))
-            if p.name != "__init__.py"]
+    """Every proof package shipped with lkverify (``lkverify.proofs.<paper>``), in name order.
+
+    Each is imported under its real name, so its items are the objects
+    ``import lkverify.proofs.<paper>`` gives.
+    """
+    names = sorted(info.name for info in pkgutil.iter_modules(_proofs_package().__path__))
+    return [load_proof_module(f"{PROOFS_PACKAGE}.{name}", load_limit=load_limit) for name in names]
 
 
 def find_items(spec: str, *, load_limit: float | None = LOAD_LIMIT_SECONDS) -> list[Item]:

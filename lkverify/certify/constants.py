@@ -11,8 +11,8 @@ A proof module attaches a :class:`ConstantsJob` to an item.  The job
    until the proof goes through or the budget is spent;
 3. optionally cross-checks the envelope against simulated trajectories.
 
-The whole job honours one time budget (``budget`` seconds, ``lkverify constants
---budget``): each phase gets what is left of it, and the job is interrupted
+The whole job honours one time budget (a :class:`~lkverify.options.Budget`): each phase
+gets what is left of it (the shares are in :class:`ConstantsTuning`), and the job is interrupted
 (``SIGALRM``, :meth:`lkverify.options.Deadline.enforced`) when it runs out; what
 was finished is reported, the rest is ``undecided`` with the phase that was cut.
 
@@ -23,18 +23,18 @@ with the paper's value when the paper prints one.
 from __future__ import annotations
 
 import dataclasses
-import time
 from collections.abc import Callable, Mapping, Sequence
 
 import sympy
 
-from . import bounds
-from ..options import BudgetExceeded, Deadline
-from .decay import DecayCertificate, DecayModel, certify_decay, estimate_decay, search_parameters, tighten
+from ..errors import InputError
+from ..options import Accuracy, Budget, BudgetExceeded, Deadline
 from ..report.results import Report, Result
 from ..status import Status
+from . import bounds
+from .decay import DecayCertificate, certify_decay, estimate_decay, search_parameters, tighten
 
-__all__ = ["Template", "ConstantsJob"]
+__all__ = ["ConstantsJob", "ConstantsTuning", "Template"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -53,7 +53,85 @@ class Template:
     paper: float | None = None
 
 
-@dataclasses.dataclass
+@dataclasses.dataclass(frozen=True)
+class ConstantsTuning:
+    """How a :class:`ConstantsJob` spends its budget: every tuning constant of the job, in one place.
+
+    Parameters
+    ----------
+    template_share : float, default 1/2
+        Fraction of the job's budget for the template constants (shared by those still to do).
+    template_accuracy : lkverify.options.Accuracy, default rel_gap 5e-3
+        When a template constant's certified bound is tight enough.
+    template_boxes : int, default 40 000
+        Branch-and-bound boxes per template constant.
+    template_enclosure : str, default "mean-value"
+        The enclosure strategy of :func:`lkverify.certify.bounds.sup_bound`.
+    rounds : int, default 5
+        Search-then-certify rounds; a refuted point joins the samples of the next search.
+    attempts : int, default 6
+        Certification attempts per round (the candidate constants lowered in between).
+    parameter_denominator : int, default 10⁴
+        The searched parameters are rounded to rationals with this denominator bound.
+    constant_denominator : int, default 10⁶
+        The estimated c̃, l_v and δ̃ are rounded to rationals with this denominator bound …
+    candidate_margin : Rational, default 99/100
+        … and c̃, l_v multiplied by this factor before the first certification.
+    shrink : Rational, default 9/10
+        Factor lowering c̃ and l_v after an attempt that was undecided without a counterexample.
+    grid : int, default 31
+        Points per axis of the estimator's face grids.
+    certify_seconds : float, default 60
+        At most this much of the remaining budget for one certification attempt.
+    retry_seconds : float, default 20
+        A round whose parameters proved infeasible is retried only with more than this left.
+    search_share : float, default 1/2
+        A search may use at most this fraction of the remaining budget; it then stops with the
+        best point found so far (leaving time to certify it).
+
+    Examples
+    --------
+    >>> ConstantsTuning().rounds, ConstantsTuning(attempts=2).attempts
+    (5, 2)
+    """
+
+    template_share: float = 0.5
+    template_accuracy: Accuracy = Accuracy(rel_gap=5e-3)
+    template_boxes: int = 40_000
+    template_enclosure: str = "mean-value"
+    rounds: int = 5
+    attempts: int = 6
+    parameter_denominator: int = 10**4
+    constant_denominator: int = 10**6
+    candidate_margin: sympy.Rational = sympy.Rational(99, 100)
+    shrink: sympy.Rational = sympy.Rational(9, 10)
+    grid: int = 31
+    certify_seconds: float = 60.0
+    retry_seconds: float = 20.0
+    search_share: float = 0.5
+
+
+@dataclasses.dataclass(frozen=True)
+class _Progress:
+    """What the job had finished when it stopped: the results so far and the phase it was in."""
+
+    results: list
+    phase: list  # one element, the current phase (a mutable cell the budget handler reads)
+
+    def enter(self, phase: str) -> None:
+        self.phase[0] = phase
+
+
+@dataclasses.dataclass(frozen=True)
+class _Candidate:
+    """The outcome of one search-and-certify round."""
+
+    params: dict | None          # the exact parameters used (None: the search found none)
+    certificate: DecayCertificate | None
+    infeasible: bool             # the parameters violate V̇ < 0 at a point of the region
+
+
+@dataclasses.dataclass(frozen=True)
 class ConstantsJob:
     """How to compute and certify an item's constants.
 
@@ -76,6 +154,12 @@ class ConstantsJob:
         (e.g. a hypothesis of the derivation fails); that is bad input (InputError).
     cross_check : callable, optional
         ``cross_check(values, certificate)`` → list of Results (simulations).
+    descriptions : dict
+        Output name → the sentence shown before its value.
+    plot_fn : callable, optional
+        ``plot_fn(extra, path, values=...)``; default: the certified envelopes on log axes.
+    tuning : ConstantsTuning
+        How the job spends its budget.
     """
 
     templates: Sequence[Template]
@@ -86,8 +170,8 @@ class ConstantsJob:
     applies: Callable | None = None
     cross_check: Callable | None = None
     descriptions: Mapping = dataclasses.field(default_factory=dict)
-
     plot_fn: Callable | None = None
+    tuning: ConstantsTuning = ConstantsTuning()
 
     def plot(self, extra: dict, path, *, values=None) -> None:
         """Write the job's figure (default: the certified envelopes on log axes)."""
@@ -97,10 +181,24 @@ class ConstantsJob:
     def goals(self) -> list[str]:
         return list(self.objective) if isinstance(self.objective, Mapping) else ["default"]
 
-    def run(self, item_name: str, values: Mapping, shown: Mapping, *, budget: float = 120.0,
+    def run(self, item_name: str, values: Mapping, shown: Mapping, *, budget: Budget | float = Budget(seconds=120),
             progress: Callable[[str], None] | None = None, seed: int = 0,
             goal: str | None = None) -> tuple[Report, dict]:
-        """Compute and certify the constants within ``budget`` seconds (the whole job).
+        """Compute and certify the constants within the budget (the whole job).
+
+        Parameters
+        ----------
+        item_name : str
+        values, shown : mapping
+            The resolved parameter values, and how they are shown in the report.
+        budget : lkverify.options.Budget or float
+            The whole job's time (a number is seconds).
+        progress : callable, optional
+            Called with a line at each step.
+        seed : int
+            Seed of the parameter search (round k uses ``seed + k``).
+        goal : str, optional
+            Which objective to minimise (see :attr:`goals`).
 
         Returns
         -------
@@ -113,53 +211,92 @@ class ConstantsJob:
         InputError
             An unknown goal, or values outside the hypotheses the model rests on.
         """
-        from ..errors import InputError
-
+        if not isinstance(budget, Budget):
+            budget = Budget(seconds=budget)
         if isinstance(self.objective, Mapping):
             if goal is not None and goal not in self.objective:
-                raise InputError(f"--goal: expected one of {', '.join(self.objective)}, got {goal}")
+                raise InputError(f"goal: expected one of {', '.join(self.objective)}, got {goal}; pass one of them")
         elif goal not in (None, "default"):
-            raise InputError(f"--goal: this item has a single goal (default), got {goal}; drop --goal")
+            raise InputError(f"goal: this item has a single goal (default), got {goal}; do not pass a goal")
         if self.applies is not None:
             why = self.applies(values)
             if why:  # outside the hypotheses the derivation rests on: bad input, not a result
                 raise InputError(f"{item_name}: {why}")
-        deadline = Deadline(budget)
-        results: list[Result] = []
-        phase = ["starting"]
+        deadline = budget.deadline()
+        state = _Progress([], ["starting"])
         try:
             with deadline.enforced():
-                return self._run(item_name, values, shown, deadline=deadline, results=results, phase=phase,
-                                 progress=progress, seed=seed, goal=goal)
+                return self._run(item_name, values, shown, deadline=deadline, state=state,
+                                 say=progress or (lambda msg: None), seed=seed, goal=goal)
         except BudgetExceeded:
             pass
-        results.append(Result("region", "budget", Status.UNDECIDED, {"budget": budget, "phase": phase[0]},
-                              f"time budget of {budget:g} s ran out during {phase[0]} (after "
-                              f"{deadline.elapsed:.1f} s); raise --budget to finish"))
-        return Report(item_name, dict(shown), tuple(results),
-                      f"undecided: the time budget of {budget:g} s ran out during {phase[0]}"), {}
+        seconds, phase = budget.seconds, state.phase[0]
+        state.results.append(Result("region", "budget", Status.UNDECIDED, {"budget": seconds, "phase": phase},
+                                    f"time budget of {seconds:g} s ran out during {phase} (after "
+                                    f"{deadline.elapsed:.1f} s); raise the budget to finish"))
+        return Report(item_name, dict(shown), tuple(state.results),
+                      f"undecided: the time budget of {seconds:g} s ran out during {phase}"), {}
 
-    def _run(self, item_name, values, shown, *, deadline: Deadline, results: list, phase: list, progress, seed,
+    def _run(self, item_name, values, shown, *, deadline: Deadline, state: _Progress, say, seed,
              goal) -> tuple[Report, dict]:
-        say = progress or (lambda msg: None)
-        budget = deadline.seconds
-        start = deadline.start
-        if isinstance(self.objective, Mapping):
-            objective = self.objective[goal or next(iter(self.objective))]
-        else:
-            objective = self.objective
+        results = state.results
+        consts = self._template_constants(item_name, values, deadline=deadline, state=state, say=say)
+        if any(r.status is not Status.CERTIFIED for r in results if r.name in consts):
+            return Report(item_name, dict(shown), tuple(results),
+                          "undecided: a template constant was not certified" + _spent(deadline)), consts
+        objective = self.objective[goal or next(iter(self.objective))] if isinstance(self.objective, Mapping) \
+            else self.objective
+        found = self._search_and_certify(item_name, self.model(values, consts), objective, deadline=deadline,
+                                         state=state, say=say, seed=seed)
+        if found.params is None:
+            results.append(Result("region", "parameters", Status.UNDECIDED, None,
+                                  "the search found no parameters for which the final inequalities hold on the "
+                                  "sampled region (not a proof that none exist)"))
+            return Report(item_name, dict(shown), tuple(results),
+                          "undecided: no admissible parameters found" + _spent(deadline)), consts
+        params, cert = found.params, found.certificate
+        for k, v in params.items():
+            results.append(Result("region", k, Status.ESTIMATED, float(v),
+                                  f"free parameter chosen by the search (exact value {v} used in the proof)"))
+        if cert is None:
+            results.append(Result("region", "certificate", Status.UNDECIDED, None, "budget spent before certifying"))
+            return Report(item_name, dict(shown), tuple(results),
+                          "undecided: no certificate" + (_spent(deadline) or " (every attempt failed)")), consts
+        if cert.status is not Status.CERTIFIED:
+            results.append(Result("region", "certificate", cert.status, None, cert.detail))
+        results += cert.results(self.paper, self.descriptions)
+        for env in cert.envelopes:
+            results.append(Result("envelope", f"envelope {env.name}", cert.status,
+                                  {"d": env.d, "rate": env.kappa, "p": env.p}, env.text()))
+        extra = {"certificate": cert, "params": params}
+        if cert.status is Status.CERTIFIED and self.cross_check is not None:
+            state.enter("the simulations cross-checking the envelope")
+            say(f"{item_name}: simulating histories inside the proved region")
+            checked = self.cross_check(values, cert)
+            curves = {}
+            if isinstance(checked, tuple):  # (results, curves for the figure)
+                checked, curves = checked
+            results += checked
+            extra["trajectories"] = curves
+        return Report(item_name, dict(shown), tuple(results), _verdict(results, self.paper, cert)), extra
+
+    def _template_constants(self, item_name, values, *, deadline: Deadline, state: _Progress, say) -> dict:
+        """Step 1: the certified constant of every template (a Result each); name → certified bound."""
+        tune = self.tuning
         consts = {}
         for k, tpl in enumerate(self.templates):
-            phase[0] = f"the template constant {tpl.name}"
+            state.enter(f"the template constant {tpl.name}")
             say(f"{item_name}: constant {tpl.name} = sup {tpl.text}")
-            # half the budget for the templates, shared by those still to do
-            share = (0.5 * budget - deadline.elapsed) / (len(self.templates) - k)
-            res = bounds.sup_bound(tpl.expr(values), tpl.box(values), rel_gap=5e-3, budget_boxes=40_000,
-                                   enclosure="mean-value", budget_seconds=max(share, 1e-3))
+            # the templates' share of the budget, shared by those still to do
+            share = (tune.template_share * deadline.seconds - deadline.elapsed) / (len(self.templates) - k) \
+                if deadline.seconds is not None else float("inf")
+            acc = tune.template_accuracy
+            res = bounds.sup_bound(tpl.expr(values), tpl.box(values), accuracy=acc,
+                                   budget=Budget(seconds=max(share, 1e-3), boxes=tune.template_boxes),
+                                   enclosure=tune.template_enclosure)
             # The upper bound is proved whenever it is finite, even if the accuracy target
             # (the gap to the estimate) was not reached within the budget.
             proved = res.certified is not None and res.certified < float("inf")
-            status = Status.CERTIFIED if proved else Status.UNDECIDED
             consts[tpl.name] = res.certified
             detail = (f"{tpl.text}: estimate {res.estimate:.6g} at {_fmt_point(res.maximiser)}, "
                       f"certified ≤ {res.certified:.6g} (gap {res.gap:.2g}"
@@ -167,87 +304,71 @@ class ConstantsJob:
                       f", {res.boxes} boxes, {res.seconds:.1f} s)")
             if tpl.paper is not None:
                 detail += f"; paper: {tpl.paper:g}"
-            results.append(Result("constant", tpl.name, status,
-                                  {"estimate": res.estimate, "certified": res.certified, "gap": res.gap,
-                                   "maximiser": res.maximiser, "boxes": res.boxes}, detail))
-        if any(r.status is not Status.CERTIFIED for r in results if r.name in consts):
-            return Report(item_name, dict(shown), tuple(results),
-                          "undecided: a template constant was not certified" + _spent(deadline, budget)), consts
-        build = self.model(values, consts)
+            state.results.append(Result("constant", tpl.name, Status.CERTIFIED if proved else Status.UNDECIDED,
+                                        {"estimate": res.estimate, "certified": res.certified, "gap": res.gap,
+                                         "maximiser": res.maximiser, "boxes": res.boxes}, detail))
+        return consts
+
+    def _search_and_certify(self, item_name, build, objective, *, deadline: Deadline, state: _Progress, say,
+                            seed) -> _Candidate:
+        """Steps 2–3: search the free parameters, certify; a refuted point joins the next round's samples."""
+        tune = self.tuning
         extra_points: list = []
-        cert = None
-        for round_ in range(5):  # search, certify; a refuted point joins the samples of the next search
-            phase[0] = f"the search of the free parameters (round {round_ + 1})"
+        found = _Candidate(None, None, False)
+        for round_ in range(tune.rounds):
+            state.enter(f"the search of the free parameters (round {round_ + 1})")
             say(f"{item_name}: searching the free parameters {', '.join(self.free)} (estimated)")
+            left = deadline.remaining
+            search_deadline = Deadline(max(tune.search_share * left, 1e-3)) if left is not None else None
             params, est = search_parameters(build, self.free, objective=objective, seed=seed + round_,
-                                            extra_points=extra_points)
+                                            extra_points=extra_points, deadline=search_deadline)
             if est is None:
-                break
-            params = {k: sympy.Rational(v).limit_denominator(10**4) for k, v in params.items()}
+                return _Candidate(None, found.certificate, False)
+            params = {k: sympy.Rational(v).limit_denominator(tune.parameter_denominator) for k, v in params.items()}
             model = build(params)
-            found: list = []
-            est = estimate_decay(model, grid=31, violations=found)
+            violations: list = []
+            est = estimate_decay(model, grid=tune.grid, violations=violations)
             if est is None:
-                extra_points += found  # the search's samples missed these: show them next round
+                extra_points += violations  # the search's samples missed these: show them next round
+                found = _Candidate(None, found.certificate, False)
                 continue
-            ct = sympy.Rational(est["c_tilde"]).limit_denominator(10**6) * sympy.Rational(99, 100)
-            ls = {v: sympy.Rational(est[f"l_{v}"]).limit_denominator(10**6) * sympy.Rational(99, 100)
-                  for v in model.outputs.values()}
-            dt = sympy.Rational(est["delta_tilde"]).limit_denominator(10**6)
-            infeasible = False
-            for attempt in range(6):
-                remaining = deadline.remaining
-                if remaining <= 0:
-                    break
-                phase[0] = f"the certification (round {round_ + 1}, attempt {attempt + 1})"
-                say(f"{item_name}: certifying (round {round_ + 1}, attempt {attempt + 1}, c̃ = {float(ct):.5g})")
-                cert = certify_decay(model, c_tilde=ct, lower_coefficients=ls, delta_tilde=dt,
-                                     budget_seconds=min(remaining, 60.0), progress=say)
-                if cert.status is Status.CERTIFIED:
-                    break
-                if cert.counterexamples:  # counterexample-guided: lower the refuted candidates
-                    tightened = tighten(model, ct, ls, cert.counterexamples)
-                    if tightened is None:
-                        say(f"{item_name}: the chosen parameters violate V̇ < 0 at a point of the region")
-                        extra_points += [pt for _, pt in cert.counterexamples]
-                        infeasible = True
-                        break
-                    ct, ls = tightened
-                else:
-                    ct, ls = ct * sympy.Rational(9, 10), {k: v * sympy.Rational(9, 10) for k, v in ls.items()}
-            if not infeasible or budget - (time.monotonic() - start) <= 20:
+            found = self._certify(item_name, model, params, est, round_, deadline=deadline, state=state, say=say,
+                                  extra_points=extra_points, previous=found.certificate)
+            left = deadline.remaining
+            if not found.infeasible or (left is not None and left <= tune.retry_seconds):
                 break
-        if est is None:
-            results.append(Result("region", "parameters", Status.UNDECIDED, None,
-                                  "the search found no parameters for which the final inequalities hold on the "
-                                  "sampled region (not a proof that none exist)"))
-            return Report(item_name, dict(shown), tuple(results), "undecided: no admissible parameters found" + _spent(deadline, budget)), consts
-        for k, v in params.items():
-            results.append(Result("region", k, Status.ESTIMATED, float(v),
-                                  f"free parameter chosen by the search (exact value {v} used in the proof)"))
-        if cert is not None and cert.status is not Status.CERTIFIED:
-            results.append(Result("region", "certificate", cert.status, None, cert.detail))
-        if cert is None:
-            results.append(Result("region", "certificate", Status.UNDECIDED, None, "budget spent before certifying"))
-            return Report(item_name, dict(shown), tuple(results),
-                          "undecided: no certificate" + (_spent(deadline, budget) or " (every attempt failed)")), consts
-        results += cert.results(self.paper, self.descriptions)
-        for env in cert.envelopes:
-            results.append(Result("envelope", f"envelope {env.name}", cert.status,
-                                  {"d": env.d, "rate": env.kappa, "p": env.p}, env.text()))
-        if cert.status is Status.CERTIFIED and self.cross_check is not None:
-            phase[0] = "the simulations cross-checking the envelope"
-            say(f"{item_name}: simulating histories inside the proved region")
-            checked = self.cross_check(values, cert)
-            curves = {}
-            if isinstance(checked, tuple):  # (results, curves for the figure)
-                checked, curves = checked
-            results += checked
-        verdict = _verdict(results, self.paper, cert)
-        extra = {"certificate": cert, "params": params}
-        if cert.status is Status.CERTIFIED and self.cross_check is not None:
-            extra["trajectories"] = curves
-        return Report(item_name, dict(shown), tuple(results), verdict), extra
+        return found
+
+    def _certify(self, item_name, model, params, est, round_, *, deadline: Deadline, state: _Progress, say,
+                 extra_points: list, previous) -> _Candidate:
+        """Step 3: certify the estimated constants, lowering them after each attempt that did not go through."""
+        tune = self.tuning
+        cert = previous
+        den, margin = tune.constant_denominator, tune.candidate_margin
+        ct = sympy.Rational(est["c_tilde"]).limit_denominator(den) * margin
+        ls = {v: sympy.Rational(est[f"l_{v}"]).limit_denominator(den) * margin for v in model.outputs.values()}
+        dt = sympy.Rational(est["delta_tilde"]).limit_denominator(den)
+        for attempt in range(tune.attempts):
+            remaining = deadline.remaining
+            if remaining is not None and remaining <= 0:
+                break
+            state.enter(f"the certification (round {round_ + 1}, attempt {attempt + 1})")
+            say(f"{item_name}: certifying (round {round_ + 1}, attempt {attempt + 1}, c̃ = {float(ct):.5g})")
+            seconds = tune.certify_seconds if remaining is None else min(remaining, tune.certify_seconds)
+            cert = certify_decay(model, c_tilde=ct, lower_coefficients=ls, delta_tilde=dt,
+                                 budget=Budget(seconds=seconds), progress=say)
+            if cert.status is Status.CERTIFIED:
+                break
+            if cert.counterexamples:  # counterexample-guided: lower the refuted candidates
+                tightened = tighten(model, ct, ls, cert.counterexamples)
+                if tightened is None:
+                    say(f"{item_name}: the chosen parameters violate V̇ < 0 at a point of the region")
+                    extra_points += [pt for _, pt in cert.counterexamples]
+                    return _Candidate(params, cert, True)
+                ct, ls = tightened
+            else:
+                ct, ls = ct * tune.shrink, {k: v * tune.shrink for k, v in ls.items()}
+        return _Candidate(params, cert, False)
 
 
 def _plot_envelopes(extra: dict, path, *, values=None, simulate_fn=None) -> None:
@@ -284,9 +405,9 @@ def _fmt_point(p) -> str:
     return "(" + ", ".join(f"{k}={v:.4g}" for k, v in p.items()) + ")"
 
 
-def _spent(deadline, budget) -> str:
+def _spent(deadline: Deadline) -> str:
     """`` (the time budget of B s ran out)`` when it did, else ``""``."""
-    return f" (the time budget of {budget:g} s ran out)" if deadline.expired else ""
+    return f" (the time budget of {deadline.seconds:g} s ran out)" if deadline.expired else ""
 
 
 def _verdict(results, paper, cert: DecayCertificate) -> str:

@@ -46,13 +46,27 @@ import numpy as np
 import sympy
 from flint import arb
 
-from . import bounds
-from .intervals import enclose, float_down, float_up
+from ..errors import InputError, UnsupportedInput
+from ..options import Accuracy, Budget, Deadline
 from ..report.results import Result
 from ..status import Status
+from . import bounds
+from .intervals import enclose, float_down, float_up
+from .matrices import matrix_positive_definite
 
-__all__ = ["DecayModel", "Envelope", "DecayCertificate", "certify_decay", "estimate_decay", "search_parameters",
-           "tighten"]
+__all__ = ["C0_REL_GAP", "CERTIFY_SECONDS", "DecayCertificate", "DecayModel", "Envelope", "ESTIMATE_GRID",
+           "INFEASIBLE_SCORE", "SEARCH_GRID", "SEARCH_MAXITER", "SEARCH_POPSIZE", "certify_decay", "estimate_decay", "search_parameters", "tighten"]
+
+#: default time budget of one :func:`certify_decay` (seconds, shared by its interval checks)
+CERTIFY_SECONDS = 60.0
+#: relative accuracy asked of the certified supremum C0 (V(t0) ≤ C0‖χ‖²)
+C0_REL_GAP = 1e-3
+#: default points per axis of the estimator's face grids (geometric towards 0)
+ESTIMATE_GRID = 41
+#: the parameter search: differential evolution's generations and population factor, and its face grid
+SEARCH_MAXITER, SEARCH_POPSIZE, SEARCH_GRID = 250, 20, 31
+#: the objective's value at parameters for which the estimator finds no admissible constants
+INFEASIBLE_SCORE = 1e6
 
 
 @dataclasses.dataclass(frozen=True)
@@ -94,6 +108,23 @@ class DecayModel:
     outputs: dict
     rate_name: str = "d3"
     derivation: str = ""
+
+    def __post_init__(self):
+        problems = []
+        missing = [str(v) for v in self.variables if v not in self.region]
+        if missing:
+            problems.append(f"region: expected an upper bound for every variable, got none for {', '.join(missing)}")
+        strays = [str(v) for v in (*self.point_variables, *self.history_variables, *self.outputs.values())
+                  if v not in self.variables]
+        if strays:
+            problems.append(f"point, history and output variables: expected some of the variables "
+                            f"{', '.join(map(str, self.variables))}, got {', '.join(strays)}")
+        if problems:
+            raise InputError(f"DecayModel {self.name}: " + "; ".join(problems))
+        if len(self.point_variables) not in (1, 2):
+            raise UnsupportedInput(f"DecayModel {self.name}: expected one or two point variables (Σ x_i² ≤ ‖χ‖² "
+                                   f"at t0), got {len(self.point_variables)}; bound the others as history "
+                                   "variables (x ≤ κ‖χ‖)")
 
     def at(self, values: Mapping) -> "DecayModel":
         """The model with parameter values substituted (exact rationals recommended)."""
@@ -170,7 +201,8 @@ def _q(x) -> sympy.Rational:
         return x
     if x.is_Float:
         return sympy.Rational(x)
-    raise TypeError(f"expected a rational number, got {x}")
+    raise InputError(f"expected a rational number (an int, a float or a SymPy Rational), got {x}; "
+                     "substitute the parameters first (DecayModel.at)")
 
 
 def _monomials(expr, variables):
@@ -207,7 +239,8 @@ def _faces(model: DecayModel):
 
 
 def certify_decay(model: DecayModel, *, c_tilde, lower_coefficients: Mapping, delta_tilde,
-                  budget_seconds: float = 60.0, progress: Callable[[str], None] | None = None) -> DecayCertificate:
+                  budget: Budget = Budget(seconds=CERTIFY_SECONDS),
+                  progress: Callable[[str], None] | None = None) -> DecayCertificate:
     """Prove the decay envelope of ``model`` (parameters already substituted) with candidate constants.
 
     Parameters
@@ -220,97 +253,146 @@ def certify_decay(model: DecayModel, *, c_tilde, lower_coefficients: Mapping, de
         output variable → candidate l_v in L ≥ l_v x_v².
     delta_tilde : rational
         Candidate admissible history norm; the result may lower it, never raise it.
+    budget : lkverify.options.Budget
+        Time for the whole certificate, shared equally by the 3n + 2 interval checks.
+    progress : callable, optional
+        Called with a line before each check.
+
+    Returns
+    -------
+    DecayCertificate
+        ``certified`` when every face inequality, every quadratic part and C0 were proved;
+        ``failed`` with ``counterexamples`` when a face check was refuted at a point;
+        ``undecided`` otherwise.
+
+    Raises
+    ------
+    UnsupportedInput
+        The model is not of the shape the scaling argument covers (the message lists why).
+
+    Examples
+    --------
+    V = w² + e², V̇ ≤ −w³ − e³ on 0 ≤ w, e ≤ 1/2: −W/U^{3/2} ≥ 1/√2 and L ≥ e², L ≥ w².
+
+    >>> import sympy
+    >>> w, e = sympy.symbols("w e", nonnegative=True)
+    >>> half, Q = sympy.Rational(1, 2), w**2 + e**2
+    >>> m = DecayModel("toy", (w, e), {w: half, e: half}, Q, Q, -w**3 - e**3, sympy.Rational(3, 2),
+    ...                (w, e), {}, {"d1": e, "d2": w})
+    >>> cert = certify_decay(m, c_tilde=sympy.Rational(7, 10), delta_tilde=sympy.Rational(1, 4),
+    ...                      lower_coefficients={e: sympy.Rational(9, 10), w: sympy.Rational(9, 10)},
+    ...                      budget=Budget(seconds=30))
+    >>> cert.status, 1 < cert.constants["d1"] < 1.1
+    (<Status.CERTIFIED: 'certified'>, True)
     """
     say = progress or (lambda msg: None)
     start = time.monotonic()
     problems = _check_structure(model)
     if problems:
-        return DecayCertificate(Status.FAILED, {}, (), (), "the model is not of the supported shape: "
-                                + "; ".join(problems), time.monotonic() - start)
-    checks = []
-    refuted = []
-    each = budget_seconds / (3 * len(model.variables) + 2)
-    ct = _q(c_tilde)
-    G = model.vdot + ct * sympy.Pow(model.upper, model.p)
-    quad = sum((c * sympy.Mul(*[v ** e for v, e in zip(model.variables, m)])
-                for m, c in sympy.Poly(model.lower, *model.variables).terms() if sum(m) == 2), sympy.S.Zero)
-    for v, hi, face in _faces(model):
-        say(f"{model.name}: V̇ ≤ −c̃V^p on the face {v} = {hi}")
-        chk = bounds.certify_nonpositive(G.subs(v, hi), face, name=f"W + c̃U^p ≤ 0 on {v} = {hi}",
-                                         budget_seconds=each)
-        checks.append(chk)
-        if chk.status is Status.FAILED and chk.point:
-            refuted.append(("rate", {**{str(v): float(hi)}, **chk.point}))
-        for out, lv in lower_coefficients.items():
-            lv = _q(lv)
-            say(f"{model.name}: L ≥ {lv}·{out}² on the face {v} = {hi}")
-            chk = bounds.certify_positive((model.lower - lv * out ** 2).subs(v, hi), face,
-                                          name=f"L − l·{out}² > 0 on {v} = {hi}", budget_seconds=each)
-            checks.append(chk)
-            if chk.status is Status.FAILED and chk.point:
-                refuted.append((out, {**{str(v): float(hi)}, **chk.point}))
-            pass
-    # ρ → 0: the quadratic part Q − l·x_v² must be ≥ 0 on the orthant; its matrix is checked PSD exactly.
-    from .conditions import matrix_positive_definite
-
-    for out, lv in lower_coefficients.items():
-        lv = _q(lv)
-        H = sympy.hessian(sympy.expand(quad - lv * out ** 2), model.variables) / 2
-        say(f"{model.name}: quadratic part of L − {lv}·{out}² is positive semidefinite")
-        checks.append(matrix_positive_definite(H, name=f"Q − l·{out}²", semidefinite=True))
-    # V(t0) ≤ C0 ‖χ‖²: U increases in every variable and U(χy)/χ² in χ; the sup is on the
-    # sphere Σ x_i² = δ̃² of the point variables, the history variables at their largest.
-    dt = _q(delta_tilde)
-    theta = sympy.Symbol("theta_", real=True)
-    pts = model.point_variables
-    if len(pts) == 1:
-        sub, box = {pts[0]: dt}, {}
-    elif len(pts) == 2:
-        sub, box = {pts[0]: dt * sympy.cos(theta), pts[1]: dt * sympy.sin(theta)}, {theta: (0, sympy.pi / 2)}
-    else:
-        raise ValueError("at most two point variables are supported")
-    ys = {}
-    for hv, kappa in model.history_variables.items():
-        y = sympy.Symbol(f"y_{hv}", nonnegative=True)
-        sub[hv] = dt * y
-        box[y] = (0, sympy.nsimplify(kappa))
-        ys[hv] = y
-    say(f"{model.name}: C0 = sup U/‖χ‖² at ‖χ‖ = δ̃")
-    c0res = bounds.sup_bound(sympy.expand(model.upper.xreplace(sub) / dt ** 2), box, rel_gap=1e-3,
-                             budget_seconds=each)
+        raise UnsupportedInput(f"{model.name}: expected a model of the shape the scaling argument covers, got: "
+                               + "; ".join(problems) + "; rewrite the final inequalities (see DecayModel)")
+    each = (budget.seconds if budget.seconds is not None else math.inf) / (3 * len(model.variables) + 2)
+    ct, dt = _q(c_tilde), _q(delta_tilde)
+    ls = {out: _q(lv) for out, lv in lower_coefficients.items()}
+    checks, refuted = _prove_faces(model, ct, ls, each, say)
+    checks += _prove_quadratic_parts(model, ls, say)
+    c0res = _initial_constant(model, dt, each, say)
     checks.append(c0res)
     ok = all(getattr(c, "status", Status.UNDECIDED).is_proof for c in checks)
     failed = [c for c in checks if getattr(c, "status", None) is Status.FAILED]
     C0 = arb(c0res.certified) if c0res.certified is not None and math.isfinite(c0res.certified) else None
-    constants: dict = {}
-    envelopes = []
-    if C0 is not None:
-        p = model.p
-        ct_a = enclose(sympy.Rational(ct), prec=None)
-        kappa = (enclose(p - 1, prec=None) * ct_a * C0 ** enclose(p - 1, prec=None)) if p != 1 else ct_a
-        names = {v: k for k, v in model.outputs.items()}
-        delta = enclose(sympy.Rational(dt), prec=None)
-        for out, lv in lower_coefficients.items():
-            lv = _q(lv)
-            d = (C0 / enclose(lv, prec=None)).sqrt()
-            name = names[out]
-            constants[name] = float_up(d)
-            h = sympy.Rational(model.region[out])
-            cap = enclose(h, prec=None) / (d if d.upper() >= 1 else arb(1))
-            delta = arb(min(float_down(delta), float_down(cap)))
-            envelopes.append(Envelope(name, float_up(d), float_down(kappa), float(p)))
-        constants[model.rate_name] = float_down(kappa)
-        constants["delta_tilde"] = float_down(delta)
-        constants["C0"] = float_up(C0)
-        constants["c_tilde"] = float_down(sympy.Rational(ct))
-        for out, lv in lower_coefficients.items():
-            constants[f"l_{out}"] = float_down(_q(lv))
+    constants, envelopes = _constants_and_envelopes(model, ct, ls, dt, C0) if C0 is not None else ({}, [])
     status = Status.CERTIFIED if ok and C0 is not None else (Status.FAILED if failed else Status.UNDECIDED)
     detail = ("every face inequality and C0 proved with arb" if status is Status.CERTIFIED else
               "; ".join(f"{getattr(c, 'name', 'C0')}: {c.status.value}" for c in checks
                         if not getattr(c, "status", Status.UNDECIDED).is_proof))
     return DecayCertificate(status, constants, tuple(envelopes), tuple(checks), detail, time.monotonic() - start,
                             tuple(refuted))
+
+
+def _prove_faces(model: DecayModel, ct, ls: Mapping, each: float, say) -> tuple[list, list]:
+    """W + c̃U^p ≤ 0 and L − l_v x_v² > 0 on every outer face: (the checks, the refuted (what, point)s)."""
+    checks, refuted = [], []
+    G = model.vdot + ct * sympy.Pow(model.upper, model.p)
+    for v, hi, face in _faces(model):
+        say(f"{model.name}: V̇ ≤ −c̃V^p on the face {v} = {hi}")
+        chk = bounds.certify_nonpositive(G.subs(v, hi), face, name=f"W + c̃U^p ≤ 0 on {v} = {hi}",
+                                         budget=Budget(seconds=each))
+        checks.append(chk)
+        if chk.status is Status.FAILED and chk.point:
+            refuted.append(("rate", {**{str(v): float(hi)}, **chk.point}))
+        for out, lv in ls.items():
+            say(f"{model.name}: L ≥ {lv}·{out}² on the face {v} = {hi}")
+            chk = bounds.certify_positive((model.lower - lv * out ** 2).subs(v, hi), face,
+                                          name=f"L − l·{out}² > 0 on {v} = {hi}", budget=Budget(seconds=each))
+            checks.append(chk)
+            if chk.status is Status.FAILED and chk.point:
+                refuted.append((out, {**{str(v): float(hi)}, **chk.point}))
+    return checks, refuted
+
+
+def _quadratic_part(lower, variables):
+    """The degree-2 part of L (a polynomial in the variables)."""
+    return sum((c * sympy.Mul(*[v ** e for v, e in zip(variables, m)])
+                for m, c in sympy.Poly(sympy.expand(lower), *variables).terms() if sum(m) == 2), sympy.S.Zero)
+
+
+def _prove_quadratic_parts(model: DecayModel, ls: Mapping, say) -> list:
+    """ρ → 0: the quadratic part Q − l·x_v² must be ≥ 0 on the orthant; its matrix is checked PSD exactly."""
+    quad = _quadratic_part(model.lower, model.variables)
+    checks = []
+    for out, lv in ls.items():
+        H = sympy.hessian(sympy.expand(quad - lv * out ** 2), model.variables) / 2
+        say(f"{model.name}: quadratic part of L − {lv}·{out}² is positive semidefinite")
+        checks.append(matrix_positive_definite(H, name=f"Q − l·{out}²", semidefinite=True))
+    return checks
+
+
+def _initial_constant(model: DecayModel, dt, each: float, say):
+    """C0 with V(t0) ≤ C0‖χ‖² (a certified supremum).
+
+    U increases in every variable and U(χy)/χ² in χ; the sup is on the sphere Σ x_i² = δ̃² of
+    the point variables, the history variables at their largest.
+    """
+    theta = sympy.Symbol("theta_", real=True)
+    pts = model.point_variables
+    if len(pts) == 1:
+        sub, box = {pts[0]: dt}, {}
+    else:
+        sub, box = {pts[0]: dt * sympy.cos(theta), pts[1]: dt * sympy.sin(theta)}, {theta: (0, sympy.pi / 2)}
+    for hv, kappa in model.history_variables.items():
+        y = sympy.Symbol(f"y_{hv}", nonnegative=True)
+        sub[hv] = dt * y
+        box[y] = (0, sympy.nsimplify(kappa))
+    say(f"{model.name}: C0 = sup U/‖χ‖² at ‖χ‖ = δ̃")
+    return bounds.sup_bound(sympy.expand(model.upper.xreplace(sub) / dt ** 2), box,
+                            accuracy=Accuracy(rel_gap=C0_REL_GAP), budget=Budget(seconds=each))
+
+
+def _constants_and_envelopes(model: DecayModel, ct, ls: Mapping, dt, C0: arb) -> tuple[dict, list]:
+    """The certified constants (d_v, the rate, δ̃, C0, c̃, l_v; rounded outward) and the envelopes."""
+    p = model.p
+    ct_a = enclose(sympy.Rational(ct), prec=None)
+    kappa = (enclose(p - 1, prec=None) * ct_a * C0 ** enclose(p - 1, prec=None)) if p != 1 else ct_a
+    names = {v: k for k, v in model.outputs.items()}
+    delta = enclose(sympy.Rational(dt), prec=None)
+    constants: dict = {}
+    envelopes = []
+    for out, lv in ls.items():
+        d = (C0 / enclose(lv, prec=None)).sqrt()
+        name = names[out]
+        constants[name] = float_up(d)
+        h = sympy.Rational(model.region[out])
+        cap = enclose(h, prec=None) / (d if d.upper() >= 1 else arb(1))
+        delta = arb(min(float_down(delta), float_down(cap)))
+        envelopes.append(Envelope(name, float_up(d), float_down(kappa), float(p)))
+    constants[model.rate_name] = float_down(kappa)
+    constants["delta_tilde"] = float_down(delta)
+    constants["C0"] = float_up(C0)
+    constants["c_tilde"] = float_down(sympy.Rational(ct))
+    for out, lv in ls.items():
+        constants[f"l_{out}"] = float_down(lv)
+    return constants, envelopes
 
 
 def tighten(model: DecayModel, c_tilde, lower_coefficients: Mapping, counterexamples, *, factor=sympy.Rational(98, 100)):
@@ -346,15 +428,14 @@ class _FastEstimator:
     so only the faces are sampled.
     """
 
-    def __init__(self, build: Callable[[Mapping], DecayModel], names: Sequence[str], grid: int = 41):
+    def __init__(self, build: Callable[[Mapping], DecayModel], names: Sequence[str], grid: int = ESTIMATE_GRID):
         self.names = list(names)
         self.syms = [sympy.Symbol(f"par_{n}", real=True) for n in self.names]
         model = build(dict(zip(self.names, self.syms)))
         self.model = model
         vs = model.variables
         args = list(vs) + self.syms
-        quad = sum((c * sympy.Mul(*[v ** e for v, e in zip(vs, m)])
-                    for m, c in sympy.Poly(sympy.expand(model.lower), *vs).terms() if sum(m) == 2), sympy.S.Zero)
+        quad = _quadratic_part(model.lower, vs)
         self.f = {k: sympy.lambdify(args, e, "numpy") for k, e in
                   (("L", model.lower), ("U", model.upper), ("W", model.vdot), ("Q", quad))}
         self.h = [sympy.lambdify(self.syms, model.region[v], "numpy") for v in vs]
@@ -476,12 +557,26 @@ class _FastEstimator:
         return out
 
 
-def estimate_decay(model: DecayModel, *, grid: int = 41, refine: bool = True,
+def estimate_decay(model: DecayModel, *, grid: int = ESTIMATE_GRID, refine: bool = True,
                    violations: list | None = None) -> dict | None:
     """Sampled (estimated) constants of a numeric model: l_v, c̃, C0, d_v, rate, δ̃; None if infeasible.
 
-    With ``refine`` the face minima are polished by local optimisation from the best samples;
-    points where W ≥ 0 is found are appended to ``violations``.
+    None also when the model, at these parameter values, is not of the shape the scaling
+    argument covers (the signs of its coefficients depend on the parameters, so a search
+    moves on to other values); :func:`certify_decay` raises
+    :class:`~lkverify.errors.UnsupportedInput` for it.  With ``refine`` the face minima are
+    polished by local optimisation from the best samples; points where W ≥ 0 is found are
+    appended to ``violations``.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> w, e = sympy.symbols("w e", nonnegative=True)
+    >>> half, Q = sympy.Rational(1, 2), w**2 + e**2
+    >>> m = DecayModel("toy", (w, e), {w: half, e: half}, Q, Q, -w**3 - e**3, sympy.Rational(3, 2),
+    ...                (w, e), {}, {"d1": e, "d2": w})
+    >>> round(estimate_decay(m)["c_tilde"], 4)      # min (w³ + e³)/(w² + e²)^{3/2} = 1/√2 at w = e
+    0.7071
     """
     if _check_structure(model):
         return None
@@ -493,13 +588,36 @@ def estimate_decay(model: DecayModel, *, grid: int = 41, refine: bool = True,
 
 
 def search_parameters(build: Callable[[Mapping], DecayModel], bounds_: Mapping[str, tuple], *,
-                      objective: Callable[[dict], float], seed: int = 0, maxiter: int = 250,
-                      popsize: int = 20, grid: int = 31, extra_points: Sequence[dict] = ()) -> tuple[dict, dict | None]:
+                      objective: Callable[[dict], float], seed: int = 0, maxiter: int = SEARCH_MAXITER,
+                      popsize: int = SEARCH_POPSIZE, grid: int = SEARCH_GRID, extra_points: Sequence[dict] = (),
+                      deadline: Deadline | None = None) -> tuple[dict, dict | None]:
     """Estimated best free parameters: differential evolution over ``bounds_`` of ``objective(estimate)``.
 
     ``build(params)`` returns the model for a parameter dict (it is called once with
     symbols and compiled).  The outcome is an estimate (a search, not a proof);
     certify it with :func:`certify_decay`.
+
+    Parameters
+    ----------
+    build : callable
+    bounds_ : mapping
+        Free parameter name → (low, high).
+    objective : callable
+        Estimate dict → number to minimise (infeasible points score :data:`INFEASIBLE_SCORE`).
+    seed, maxiter, popsize : int
+        Of :func:`scipy.optimize.differential_evolution`.
+    grid : int
+        Points per axis of the estimator's face grids.
+    extra_points : sequence of dict
+        Points (variable name → value) sampled in addition to the grids (earlier counterexamples).
+    deadline : lkverify.options.Deadline, optional
+        The search stops at the end of the generation in which it expires, keeping the best
+        point found so far (never interrupted half-way).
+
+    Returns
+    -------
+    (dict, dict or None)
+        The parameters, and the estimate there (None when no feasible point was found).
     """
     from scipy.optimize import differential_evolution
 
@@ -509,9 +627,12 @@ def search_parameters(build: Callable[[Mapping], DecayModel], bounds_: Mapping[s
 
     def f(x):
         r = est(list(x))
-        return 1e6 if r is None else objective(r)
+        return INFEASIBLE_SCORE if r is None else objective(r)
+
+    def expired(xk, convergence=None) -> bool:  # returning True stops differential_evolution cleanly
+        return deadline is not None and deadline.expired
 
     res = differential_evolution(f, [bounds_[n] for n in names], seed=seed, maxiter=maxiter, popsize=popsize,
-                                 tol=1e-12, polish=False)
+                                 tol=1e-12, polish=False, callback=expired)
     params = dict(zip(names, res.x))
     return params, est(list(res.x))

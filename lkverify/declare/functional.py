@@ -114,12 +114,12 @@ class Functional:
         terms = tuple(Term(t_.expr[0, 0], text=t_.text, latex=t_.latex)
                       if isinstance(t_, Term) and t_.is_vector and t_.shape == (1, 1) else t_ for t_ in terms)
         if not terms:
-            raise ValueError(f"Functional {name}: expected at least one term")
+            raise InputError(f"Functional {name}: expected at least one term")
         for term in terms:
             if not isinstance(term, Term):
-                raise TypeError(f"Functional {name}: expected Term objects, got {type(term).__name__}")
+                raise InputError(f"Functional {name}: expected Term objects, got {type(term).__name__}")
             if term.is_vector:
-                raise ValueError(f"Functional {name}: term {term.text!r} is a {term.shape} matrix, expected a scalar")
+                raise InputError(f"Functional {name}: term {term.text!r} is a {term.shape} matrix, expected a scalar")
         self.terms = terms
         self.name = name
 

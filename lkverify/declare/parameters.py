@@ -29,10 +29,10 @@ from ..errors import InputError
 from .symbols import t as _t, zeta as _zeta
 from .vectors import dot
 
-__all__ = ["Kind", "ParameterSpec", "Parameters", "SymmetricMatrix"]
+__all__ = ["ParameterKind", "ParameterSpec", "Parameters", "SymmetricMatrix"]
 
 
-class Kind(str, enum.Enum):
+class ParameterKind(str, enum.Enum):
     """What a parameter is, and so which values are admissible."""
 
     REAL = "real scalar"
@@ -57,7 +57,7 @@ class SymmetricMatrix(sympy.ImmutableDenseMatrix):
         return sympy.ImmutableMatrix(self.adjugate() / self.det(method="berkowitz"))
 
 
-_SCALAR_KINDS = (Kind.REAL, Kind.POSITIVE, Kind.NONNEGATIVE, Kind.DELAY)
+_SCALAR_KINDS = (ParameterKind.REAL, ParameterKind.POSITIVE, ParameterKind.NONNEGATIVE, ParameterKind.DELAY)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -68,7 +68,7 @@ class ParameterSpec:
     ----------
     name : str
         The name users pass to ``--set``.
-    kind : Kind
+    kind : ParameterKind
     obj : sympy object
         What formulas use: a Symbol, a Matrix, or an undefined function.
     symbols : tuple
@@ -80,7 +80,7 @@ class ParameterSpec:
     """
 
     name: str
-    kind: Kind
+    kind: ParameterKind
     obj: object
     symbols: tuple
     default: object = None
@@ -103,13 +103,13 @@ class ParameterSpec:
                 raise InputError(f"{name}: expected a finite real number, got {value}")
             if not value.is_real:
                 raise InputError(f"{name}: expected a real number, got {value}")
-            if self.kind in (Kind.POSITIVE, Kind.DELAY) and not value.is_positive:
-                what = "a delay must be positive" if self.kind is Kind.DELAY else "it must be positive"
+            if self.kind in (ParameterKind.POSITIVE, ParameterKind.DELAY) and not value.is_positive:
+                what = "a delay must be positive" if self.kind is ParameterKind.DELAY else "it must be positive"
                 raise InputError(f"{name}: expected {name} > 0 ({what}), got {name}={value}")
-            if self.kind is Kind.NONNEGATIVE and value.is_negative:
+            if self.kind is ParameterKind.NONNEGATIVE and value.is_negative:
                 raise InputError(f"{name}: expected {name} >= 0, got {name}={value}")
             return value
-        if self.kind in (Kind.SPD_MATRIX, Kind.DIAGONAL):
+        if self.kind in (ParameterKind.SPD_MATRIX, ParameterKind.DIAGONAL):
             n = self.shape[0]
             if not isinstance(value, sympy.MatrixBase):
                 raise InputError(f"{name}: expected a {n}x{n} matrix such as diag({','.join(['1'] * n)}), got {value}")
@@ -119,13 +119,13 @@ class ParameterSpec:
                 raise InputError(f"{name}: expected numeric entries, got {list(value)}")
             if any(e.has(sympy.nan, sympy.zoo, sympy.oo, -sympy.oo) for e in value):
                 raise InputError(f"{name}: expected finite entries, got {list(value)}")
-            if self.kind is Kind.DIAGONAL and not value.is_diagonal():
+            if self.kind is ParameterKind.DIAGONAL and not value.is_diagonal():
                 raise InputError(f"{name}: expected a diagonal matrix like diag(5,6,4), got {value.tolist()}")
             if not (value - value.T).is_zero_matrix:
                 raise InputError(f"{name}: expected a symmetric matrix, got {value.tolist()}")
             _check_positive_definite(name, value, n)
             return sympy.ImmutableMatrix(value)
-        if self.kind is Kind.UNIT_VECTOR:
+        if self.kind is ParameterKind.UNIT_VECTOR:
             n = self.shape[0]
             if not isinstance(value, sympy.MatrixBase) or value.shape not in ((n, 1), (1, n)):
                 raise InputError(f"{name}: expected a unit {n}-vector such as [0,0,1], got {value}")
@@ -136,12 +136,12 @@ class ParameterSpec:
                 raise InputError(f"{name}: expected a unit vector, got norm {_fmt(sympy.sqrt(dot(value, value)))}; "
                                  f"divide each entry by the norm, e.g. [1/sqrt(3),1/sqrt(3),1/sqrt(3)]")
             return value
-        if self.kind in (Kind.COEFFICIENT, Kind.KERNEL):
-            var = _t if self.kind is Kind.COEFFICIENT else _zeta
+        if self.kind in (ParameterKind.COEFFICIENT, ParameterKind.KERNEL):
+            var = _t if self.kind is ParameterKind.COEFFICIENT else _zeta
             if isinstance(value, sympy.MatrixBase):
                 raise InputError(f"{name}: expected a scalar function of {var}, got a matrix")
             value = sympy.sympify(value)
-            if self.kind is Kind.KERNEL:
+            if self.kind is ParameterKind.KERNEL:
                 value = value.subs(_t, _zeta)  # users write kernels in t as well
             extra = value.free_symbols - {var}
             if extra:
@@ -155,10 +155,10 @@ class ParameterSpec:
         """The replacement of this parameter's atoms by ``value`` (already checked)."""
         if self.kind in _SCALAR_KINDS:
             return {self.obj: value}
-        if self.kind in (Kind.SPD_MATRIX, Kind.DIAGONAL, Kind.UNIT_VECTOR):
+        if self.kind in (ParameterKind.SPD_MATRIX, ParameterKind.DIAGONAL, ParameterKind.UNIT_VECTOR):
             return {s: v for s, v in zip(self.obj, value) if isinstance(s, sympy.Symbol)}
         # functions: replace f(arg) by value(arg)
-        var = _t if self.kind is Kind.COEFFICIENT else _zeta
+        var = _t if self.kind is ParameterKind.COEFFICIENT else _zeta
         return {self.obj: sympy.Lambda(var, value)}
 
     # -- random admissible values for numeric witnesses ------------------------------------
@@ -167,35 +167,35 @@ class ParameterSpec:
         def rat(lo, hi):
             return sympy.Rational(int(rng.integers(int(lo * 64), int(hi * 64))), 64)
 
-        if self.kind is Kind.REAL:
+        if self.kind is ParameterKind.REAL:
             return rat(-2, 2)
-        if self.kind in (Kind.POSITIVE, Kind.NONNEGATIVE):
+        if self.kind in (ParameterKind.POSITIVE, ParameterKind.NONNEGATIVE):
             return rat(0.4, 2.2)
-        if self.kind is Kind.DELAY:
+        if self.kind is ParameterKind.DELAY:
             return rat(0.4, 1.6)
-        if self.kind is Kind.DIAGONAL:
+        if self.kind is ParameterKind.DIAGONAL:
             return sympy.ImmutableMatrix(sympy.diag(*[rat(1, 4) for _ in range(self.shape[0])]))
-        if self.kind is Kind.SPD_MATRIX:
+        if self.kind is ParameterKind.SPD_MATRIX:
             n = self.shape[0]
             m = sympy.Matrix(n, n, lambda i, j: rat(-1, 1))
             return sympy.ImmutableMatrix(m * m.T + sympy.eye(n))
-        if self.kind is Kind.UNIT_VECTOR:
+        if self.kind is ParameterKind.UNIT_VECTOR:
             v = rng.normal(size=self.shape[0])
             v = [sympy.Rational(int(round(x * 16)), 16) for x in v]
             m = sympy.Matrix(v)
             if m.norm() == 0:
                 m[0] = 1
             return sympy.ImmutableMatrix(m / m.norm())
-        if self.kind is Kind.COEFFICIENT:
+        if self.kind is ParameterKind.COEFFICIENT:
             return 1 + rat(0.1, 0.6) * sympy.sin(rat(0.5, 2) * _t + rat(0, 3))
-        if self.kind is Kind.KERNEL:
+        if self.kind is ParameterKind.KERNEL:
             return rat(0.5, 2) * sympy.exp(-rat(0.5, 2) * _zeta)
         raise AssertionError(self.kind)  # pragma: no cover
 
 
 def _check_positive_definite(name: str, value, n: int) -> None:
     """Raise InputError unless ``value ≻ 0`` is proved (exact LDLᵀ, or arb balls for irrational entries)."""
-    from ..certify.conditions import matrix_positive_definite
+    from ..certify.matrices import matrix_positive_definite
     from ..status import Status
 
     res = matrix_positive_definite(value, name=name)
@@ -226,9 +226,9 @@ class Parameters:
     # -- declarations ---------------------------------------------------------------------
     def _add(self, spec: ParameterSpec):
         if not spec.name.isidentifier():
-            raise ValueError(f"parameter name must be an identifier, got {spec.name!r}")
+            raise InputError(f"parameter name must be an identifier, got {spec.name!r}")
         if spec.name in self._specs:
-            raise ValueError(f"parameter {spec.name!r} declared twice")
+            raise InputError(f"parameter {spec.name!r} declared twice")
         if spec.default is not None:
             object.__setattr__(spec, "default", spec.check(_coerce(spec.default, spec.name)))
         self._specs[spec.name] = spec
@@ -237,7 +237,7 @@ class Parameters:
     def scalar(self, name: str, *, positive: bool = False, nonnegative: bool = False,
                default=None, latex: str | None = None, description: str = "") -> sympy.Symbol:
         """A constant real scalar; ``positive`` / ``nonnegative`` restrict it."""
-        kind = Kind.POSITIVE if positive else Kind.NONNEGATIVE if nonnegative else Kind.REAL
+        kind = ParameterKind.POSITIVE if positive else ParameterKind.NONNEGATIVE if nonnegative else ParameterKind.REAL
         assumptions = {"positive": True} if positive else {"nonnegative": True} if nonnegative else {"real": True}
         sym = sympy.Symbol(name, **assumptions)
         return self._add(ParameterSpec(name, kind, sym, (sym,), default, latex or name, description))
@@ -245,7 +245,7 @@ class Parameters:
     def delay(self, name: str = "tau", *, default=None, latex: str | None = r"\tau", description: str = "") -> sympy.Symbol:
         """A constant delay τ > 0."""
         sym = sympy.Symbol(name, positive=True)
-        return self._add(ParameterSpec(name, Kind.DELAY, sym, (sym,), default, latex or name, description))
+        return self._add(ParameterSpec(name, ParameterKind.DELAY, sym, (sym,), default, latex or name, description))
 
     def spd_matrix(self, name: str, n: int = 3, *, default=None, latex: str | None = None,
                    description: str = "") -> SymmetricMatrix:
@@ -255,7 +255,7 @@ class Parameters:
             i, j = min(i, j), max(i, j)
             return syms.setdefault((i, j), sympy.Symbol(f"{name}_{i + 1}{j + 1}", real=True))
         m = SymmetricMatrix(n, n, lambda i, j: entry(i, j))
-        return self._add(ParameterSpec(name, Kind.SPD_MATRIX, m, tuple(syms.values()), default,
+        return self._add(ParameterSpec(name, ParameterKind.SPD_MATRIX, m, tuple(syms.values()), default,
                                        latex or name, description, (n, n)))
 
     def diagonal_matrix(self, name: str, entries: Sequence[str], *, default=None, latex: str | None = None,
@@ -263,7 +263,7 @@ class Parameters:
         """A constant diagonal matrix with positive entries named ``entries`` (e.g. Θ = diag(A, B, C))."""
         syms = tuple(sympy.Symbol(e, positive=True) for e in entries)
         m = sympy.ImmutableMatrix(sympy.diag(*syms))
-        return self._add(ParameterSpec(name, Kind.DIAGONAL, m, syms, default, latex or name, description,
+        return self._add(ParameterSpec(name, ParameterKind.DIAGONAL, m, syms, default, latex or name, description,
                                        (len(syms), len(syms))))
 
     def unit_vector(self, name: str, n: int = 3, *, default=None, latex: str | None = None,
@@ -272,25 +272,25 @@ class Parameters:
         comps = ("x", "y", "z") if n == 3 else tuple(str(i + 1) for i in range(n))
         syms = tuple(sympy.Symbol(f"{name}_{c}", real=True) for c in comps)
         m = sympy.ImmutableMatrix(syms)
-        return self._add(ParameterSpec(name, Kind.UNIT_VECTOR, m, syms, default, latex or name, description, (n, 1)))
+        return self._add(ParameterSpec(name, ParameterKind.UNIT_VECTOR, m, syms, default, latex or name, description, (n, 1)))
 
     def orthonormal(self, *names: str) -> None:
         """Declare already-declared constant unit vectors mutually orthogonal."""
         for n in names:
-            if n not in self._specs or self._specs[n].kind is not Kind.UNIT_VECTOR:
-                raise ValueError(f"orthonormal(): {n!r} is not a declared unit vector")
+            if n not in self._specs or self._specs[n].kind is not ParameterKind.UNIT_VECTOR:
+                raise InputError(f"orthonormal(): {n!r} is not a declared unit vector")
         self._groups.append(tuple(names))
 
     def coefficient(self, name: str, *, default=None, latex: str | None = None,
                     description: str = "") -> sympy.FunctionClass:
         """A time-varying coefficient h(t); formulas write ``h(t)``."""
         f = sympy.Function(name, real=True)
-        return self._add(ParameterSpec(name, Kind.COEFFICIENT, f, (f,), default, latex or name, description))
+        return self._add(ParameterSpec(name, ParameterKind.COEFFICIENT, f, (f,), default, latex or name, description))
 
     def kernel(self, name: str, *, default=None, latex: str | None = None, description: str = "") -> sympy.FunctionClass:
         """A scalar memory kernel g(ζ), ζ ≥ 0; formulas write ``g(zeta)`` or ``g(t - xi)``."""
         f = sympy.Function(name, real=True)
-        return self._add(ParameterSpec(name, Kind.KERNEL, f, (f,), default, latex or name, description))
+        return self._add(ParameterSpec(name, ParameterKind.KERNEL, f, (f,), default, latex or name, description))
 
     # -- queries ---------------------------------------------------------------------------
     @property
@@ -308,7 +308,7 @@ class Parameters:
 
     def constraint_polynomials(self) -> list[sympy.Expr]:
         """Polynomials vanishing for admissible constant vectors (‖r‖ = 1, rᵢ·rⱼ = 0)."""
-        polys = [dot(s.obj, s.obj) - 1 for s in self._specs.values() if s.kind is Kind.UNIT_VECTOR]
+        polys = [dot(s.obj, s.obj) - 1 for s in self._specs.values() if s.kind is ParameterKind.UNIT_VECTOR]
         for group in self._groups:
             for i, a in enumerate(group):
                 for b in group[i + 1:]:

@@ -178,13 +178,14 @@ def _max_abs_rational(expr: sympy.Basic) -> int:
 class _Evaluator:
     """Walk a whitelisted expression tree and build the SymPy value."""
 
-    def __init__(self, name: str, text: str, variables: Mapping[str, sympy.Basic], option: str = "--set"):
+    def __init__(self, name: str, text: str, variables: Mapping[str, sympy.Basic], option: str | None = None):
         self.name = name
         self.text = text
         self.variables = variables
         self.option = option
         key = name.split()[-1] if name.split() else "x"
-        self.example = f"{option} {key if key.isidentifier() else 'x'}=2"
+        key = key if key.isidentifier() else "x"
+        self.example = f"{option} {key}=2" if option else f"{key}=2"
 
     # -- messages -----------------------------------------------------------
     def expectation(self) -> str:
@@ -653,7 +654,7 @@ def parse_value(
     *,
     name: str = "value",
     variables: Mapping[str, sympy.Symbol] | None = None,
-    option: str = "--set",
+    option: str | None = None,
 ) -> sympy.Expr | sympy.ImmutableMatrix:
     """Turn user text into a SymPy expression or matrix without executing it.
 
@@ -674,7 +675,7 @@ def parse_value(
         stand for, e.g. ``{"t": sympy.Symbol("t")}``.  They take precedence
         over the constants ``pi`` and ``E``.
     option : str, optional
-        The command-line option the value came from (``"--set"`` or
+        The command-line option the value came from, if any (``"--set"`` or
         ``"--history"``), used in the suggested fixes.
 
     Returns
@@ -709,13 +710,13 @@ def parse_value(
     lkverify.errors.InputError: mu: '^' is not a power operator (got 2^3); write ** instead, e.g. 2 ** 3
     """
     if not isinstance(text, str):
-        raise TypeError(f"text must be a str, not {type(text).__name__}")
+        raise InputError(f"text must be a str, not {type(text).__name__}")
     checked: dict[str, sympy.Basic] = {}
     for key, symbol in (variables or {}).items():
         if not isinstance(key, str) or not key.isidentifier():
-            raise TypeError(f"variable names must be identifiers, got {key!r}")
+            raise InputError(f"variable names must be identifiers, got {key!r}")
         if not isinstance(symbol, sympy.Basic):
-            raise TypeError(f"variable {key!r} must be a SymPy object, not {type(symbol).__name__}")
+            raise InputError(f"variable {key!r} must be a SymPy object, not {type(symbol).__name__}")
         checked[key] = symbol
     return _Evaluator(name, text.strip(), checked, option).run()
 
@@ -751,7 +752,7 @@ def parse_assignment(text: str, *, option: str = "--set") -> tuple[str, str]:
     ('mu', '0.5')
     """
     if not isinstance(text, str):
-        raise TypeError(f"text must be a str, not {type(text).__name__}")
+        raise InputError(f"text must be a str, not {type(text).__name__}")
     raw_name, sep, value = text.partition("=")
     name, value = raw_name.strip(), value.strip()
     label = _one_line(name, 40) if name else option

@@ -20,6 +20,7 @@ from collections.abc import Sequence
 
 import sympy
 from .vectors import cross, dot
+from ..errors import InputError
 
 __all__ = ["Vector", "UnitVector", "Frame"]
 
@@ -52,9 +53,9 @@ class Vector:
 
     def __init__(self, name: str, dim: int = 3, *, latex: str | None = None, text: str | None = None):
         if not isinstance(name, str) or not name.isidentifier():
-            raise ValueError(f"state name must be an identifier, got {name!r}")
+            raise InputError(f"state name must be an identifier, got {name!r}")
         if not isinstance(dim, int) or dim < 1:
-            raise ValueError(f"state {name}: dimension must be a positive integer, got {dim!r}")
+            raise InputError(f"state {name}: dimension must be a positive integer, got {dim!r}")
         self.name = name
         self.dim = dim
         self.latex = latex or name
@@ -94,7 +95,7 @@ class Frame:
 
     def __init__(self, names: Sequence[str] = ("s1", "s2", "s3"), *, latex: Sequence[str] | None = None):
         if len(names) != 3:
-            raise ValueError(f"a frame has three vectors, got names {list(names)!r}")
+            raise InputError(f"a frame has three vectors, got names {list(names)!r}")
         latex = latex or names
         self.vectors = tuple(UnitVector(n, 3, latex=l) for n, l in zip(names, latex))
         for v in self.vectors:

@@ -29,6 +29,7 @@ from .parameters import Parameters
 from .states import Frame, Vector
 from .symbols import t
 from .terms import Term
+from ..errors import InputError
 
 __all__ = ["Equation", "System"]
 
@@ -56,23 +57,23 @@ class Equation:
 
     def __init__(self, state: Vector, terms: Sequence[Term], mass=None, *, mass_text: str = "", mass_latex: str = ""):
         if not isinstance(state, Vector):
-            raise TypeError(f"Equation: expected a state (Vector), got {type(state).__name__}")
+            raise InputError(f"Equation: expected a state (Vector), got {type(state).__name__}")
         terms = tuple(terms)
         if not terms:
-            raise ValueError(f"Equation for {state.name}: expected at least one right-hand-side term")
+            raise InputError(f"Equation for {state.name}: expected at least one right-hand-side term")
         for i, term in enumerate(terms):
             if not isinstance(term, Term):
-                raise TypeError(f"Equation for {state.name}: expected Term objects, got {type(term).__name__}")
+                raise InputError(f"Equation for {state.name}: expected Term objects, got {type(term).__name__}")
             if state.dim == 1 and not term.is_vector:
                 term = Term(sympy.ImmutableMatrix([term.expr]), text=term.text, latex=term.latex)
                 terms = terms[:i] + (term,) + terms[i + 1:]
             if not term.is_vector or term.shape != (state.dim, 1):
-                raise ValueError(f"Equation for {state.name}: term {term.text!r} has shape {term.shape}, "
+                raise InputError(f"Equation for {state.name}: term {term.text!r} has shape {term.shape}, "
                                  f"expected ({state.dim}, 1)")
         if mass is not None:
             mass = sympy.ImmutableMatrix(mass)
             if mass.shape != (state.dim, state.dim):
-                raise ValueError(f"Equation for {state.name}: mass has shape {mass.shape}, expected "
+                raise InputError(f"Equation for {state.name}: mass has shape {mass.shape}, expected "
                                  f"({state.dim}, {state.dim})")
         object.__setattr__(self, "state", state)
         object.__setattr__(self, "terms", terms)
@@ -110,7 +111,7 @@ class System:
         seen = set()
         for eq in equations:
             if eq.state.name in seen:
-                raise ValueError(f"System {name}: two equations for state {eq.state.name}")
+                raise InputError(f"System {name}: two equations for state {eq.state.name}")
             seen.add(eq.state.name)
         self.equations = equations
         self.parameters = parameters

@@ -12,6 +12,7 @@ Matrix([[0, 0, 1]])
 from __future__ import annotations
 
 import sympy
+from ..errors import InputError
 
 __all__ = ["as_column", "cross", "dot", "norm", "norm_squared", "norm_power", "quad"]
 
@@ -22,7 +23,7 @@ def as_column(v) -> sympy.Matrix:
     if m.shape[1] != 1:
         if m.shape[0] == 1:
             return m.T
-        raise ValueError(f"expected a vector (n x 1 column), got a {m.shape[0]}x{m.shape[1]} matrix")
+        raise InputError(f"expected a vector (n x 1 column), got a {m.shape[0]}x{m.shape[1]} matrix")
     return m
 
 
@@ -30,7 +31,7 @@ def cross(u, v) -> sympy.Matrix:
     """The cross product u × v of two 3-vectors."""
     u, v = as_column(u), as_column(v)
     if u.shape != (3, 1) or v.shape != (3, 1):
-        raise ValueError(f"cross product needs two 3-vectors, got shapes {u.shape} and {v.shape}")
+        raise InputError(f"cross product needs two 3-vectors, got shapes {u.shape} and {v.shape}")
     return u.cross(v)
 
 
@@ -38,7 +39,7 @@ def dot(u, v) -> sympy.Expr:
     """The scalar product uᵀv."""
     u, v = as_column(u), as_column(v)
     if u.shape != v.shape:
-        raise ValueError(f"dot product of vectors of shapes {u.shape} and {v.shape}")
+        raise InputError(f"dot product of vectors of shapes {u.shape} and {v.shape}")
     return sum((a * b for a, b in zip(u, v)), sympy.S.Zero)
 
 

@@ -1,0 +1,5 @@
+"""Results and reports: what every job returns, prints and serialises (the JSON card of DESIGN.md)."""
+
+from .results import Kind, Report, Result, jsonable
+
+__all__ = ["Kind", "Report", "Result", "jsonable"]

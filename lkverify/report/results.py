@@ -16,6 +16,7 @@ import math
 import sympy
 
 from ..status import Status
+from ..errors import InputError
 
 __all__ = ["Kind", "Result", "Report", "jsonable"]
 
@@ -96,10 +97,10 @@ class Result:
     def __post_init__(self):
         if not isinstance(self.kind, Kind):
             if self.kind not in KINDS:
-                raise ValueError(f"result kind: expected one of {', '.join(KINDS)}, got {self.kind!r}")
+                raise InputError(f"result kind: expected one of {', '.join(KINDS)}, got {self.kind!r}")
             object.__setattr__(self, "kind", Kind(self.kind))
         if not isinstance(self.status, Status):
-            raise TypeError(f"result status: expected a Status, got {self.status!r}")
+            raise InputError(f"result status: expected a Status, got {self.status!r}")
 
     def to_json(self) -> dict:
         return {"kind": self.kind.value, "name": self.name, "status": self.status.value,

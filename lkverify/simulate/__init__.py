@@ -1,0 +1,29 @@
+"""The simulation stage: a symbolic System integrated numerically, and what the papers say about the runs.
+
+* :mod:`~lkverify.simulate.solver` — the DDE integrator :func:`solve_dde` (method of steps on
+  SciPy's explicit Runge–Kutta steppers), with :mod:`~lkverify.simulate.history` (dense
+  output), :mod:`~lkverify.simulate.events` (breakpoints, divergence, the step floor) and
+  :mod:`~lkverify.simulate.checks` (argument checks);
+* :mod:`~lkverify.simulate.compile` — :func:`compile_system`: the right-hand side generated from the System;
+* :mod:`~lkverify.simulate.control` — :class:`StepControl`: tolerances and step limits;
+* :mod:`~lkverify.simulate.runs` — :func:`simulate` and the :class:`Trajectory`;
+* :mod:`~lkverify.simulate.experiments` — runs, plotted series and claims about runs;
+* :mod:`~lkverify.simulate.envelope` — a predicted envelope against a trajectory;
+* :mod:`~lkverify.simulate.rigidbody` — numeric attitude conventions (rotations, ‖χ‖_τ).
+"""
+
+from .compile import CompiledSystem, compile_system
+from .control import QUADRATURE_MAX_STEP, StepControl
+from .envelope import EnvelopeCheck, cross_check
+from .experiments import (BoundedNotAttractive, Converges, DoesNotConverge, EnvelopeSpec, FasterThan, FromValues, Run,
+                          RunClaim, RunSummary, Sensitive, Series, SmootherThan, along)
+from .runs import MAX_STEPS, PreparedRun, Trajectory, prepare_run, simulate
+from .solver import DDESolution, DenseHistory, Outcome, solve_dde
+
+__all__ = [
+    "FromValues", "along",
+    "BoundedNotAttractive", "CompiledSystem", "Converges", "DDESolution", "DenseHistory", "DoesNotConverge",
+    "EnvelopeCheck", "EnvelopeSpec", "FasterThan", "MAX_STEPS", "Outcome", "PreparedRun", "QUADRATURE_MAX_STEP",
+    "Run", "RunClaim", "RunSummary", "Sensitive", "Series", "SmootherThan", "StepControl", "Trajectory",
+    "compile_system", "cross_check", "prepare_run", "simulate", "solve_dde",
+]

@@ -16,6 +16,7 @@ import dataclasses
 import numpy as np
 
 from ..status import Status
+from ..errors import InputError
 
 __all__ = ["EnvelopeCheck", "cross_check"]
 
@@ -63,7 +64,7 @@ def cross_check(t, quantity, envelope, *, name: str = "envelope", rtol: float = 
     q = np.asarray(quantity, dtype=float)
     e = np.asarray(envelope, dtype=float)
     if not (t.shape == q.shape == e.shape):
-        raise ValueError(f"t, quantity and envelope must have one shape, got {t.shape}, {q.shape}, {e.shape}")
+        raise InputError(f"t, quantity and envelope must have one shape, got {t.shape}, {q.shape}, {e.shape}")
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = np.where(e > 0, q / e, np.inf)
     k = int(np.nanargmax(ratio))

@@ -37,6 +37,7 @@ from sympy.polys.rings import PolyRing
 
 from ..options import Deadline
 from ..declare.functional import split_outer
+from ..errors import UnsupportedInput
 
 __all__ = ["Canonicalizer", "NormalForms"]
 
@@ -133,7 +134,7 @@ class Canonicalizer:
             return self._atom_for(e.func(*[sympy.expand(a) for a in e.args]))
         if isinstance(e, (sympy.Function, sympy.Derivative, sympy.Subs)):
             return self._atom_for(e)
-        raise TypeError(f"cannot put {type(e).__name__} in normal form: {e}")
+        raise UnsupportedInput(f"cannot put {type(e).__name__} in normal form: {e}; identities support polynomial operations, powers, integrals and function values")
 
     def _inverse(self, base):
         """The atom z standing for 1/base, with the relation z·base − 1 recorded."""

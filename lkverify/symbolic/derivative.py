@@ -186,8 +186,22 @@ def _term_blocks(term, system: System, funcs) -> list[Block]:
                          + factor_latex,
                          finish(expr)))
     # Leibniz rule for each integral
+    for kind, pieces, how in _leibniz(Pt, integrals, Y):
+        out.append(Block(src_text, kind, f"∫ in [{src_text}]: {how}",
+                         rf"\textstyle\int \text{{ in }} \left[{src_latex}\right]\text{{: {how}}}",
+                         finish(sympy.Add(*pieces))))
+    # explicit time dependence (weights, coefficients h(t))
+    explicit = sympy.diff(Pt, t)
+    if explicit != 0:
+        out.append(Block(src_text, "explicit t", f"∂/∂t [{src_text}]",
+                         rf"\partial_t\left[{src_latex}\right]", finish(explicit)))
+    return out
+
+
+def _leibniz(Pt, integrals, placeholders) -> list:
+    """d/dt of the integrals of one term: (kind, pieces, how) for the upper limit, lower limit, integrand."""
     upper, lower, inner = [], [], []
-    for I, y in zip(integrals, Y):
+    for I, y in zip(integrals, placeholders):
         dPdI = sympy.diff(Pt, y)
         if dPdI == 0:
             continue
@@ -200,15 +214,6 @@ def _term_blocks(term, system: System, funcs) -> list[Block]:
         dg = sympy.diff(g, t)
         if dg != 0:
             inner.append(dPdI * sympy.Integral(dg, (var, lo, hi)))
-    for kind, pieces, how in (("upper limit", upper, "upper limit"), ("lower limit", lower, "lower limit"),
-                              ("under the integral", inner, "∂/∂t under the integral sign")):
-        if pieces:
-            out.append(Block(src_text, kind, f"∫ in [{src_text}]: {how}",
-                             rf"\textstyle\int \text{{ in }} \left[{src_latex}\right]\text{{: {how}}}",
-                             finish(sympy.Add(*pieces))))
-    # explicit time dependence (weights, coefficients h(t))
-    explicit = sympy.diff(Pt, t)
-    if explicit != 0:
-        out.append(Block(src_text, "explicit t", f"∂/∂t [{src_text}]",
-                         rf"\partial_t\left[{src_latex}\right]", finish(explicit)))
-    return out
+    named = (("upper limit", upper, "upper limit"), ("lower limit", lower, "lower limit"),
+             ("under the integral", inner, "∂/∂t under the integral sign"))
+    return [(kind, pieces, how) for kind, pieces, how in named if pieces]

@@ -148,19 +148,13 @@ def check_identity(claimed: Sequence[Term], reference: Sequence[Term], *, name: 
     witnesses: list[Witness] = []
     worst = None  # (relative difference, witness, value, scale)
     residue_check = None
+    refuted = exact_zero = False
+    differences = ()
     try:
         with deadline.enforced():
-            # 1. numeric witnesses
-            for _ in range(points):
-                deadline.check()
-                w = make_witness(states, parameters, fixed=values, rng=rng)
-                witnesses.append(w)
-                vals = evaluate_many([term.expr for term in all_terms], w)
-                diff = sum(vals[: len(claimed)]) - sum(vals[len(claimed):])
-                scale = max(1.0, sum(abs(v) for v in vals))
-                rel = abs(diff) / scale
-                if worst is None or rel > worst[0]:
-                    worst = (rel, w, diff, scale)
+            # 1. numeric witnesses (appended to ``witnesses`` one by one, so a budget cut keeps them)
+            worst = _numeric_witnesses(claimed, reference, states, parameters, values, rng, points,
+                                       deadline, witnesses)
             witness = worst[1] if worst else None
             refuted = worst is not None and worst[0] > REFUTE_TOL
             # 2. exact normal forms (also needed for the term-by-term report)
@@ -179,8 +173,29 @@ def check_identity(claimed: Sequence[Term], reference: Sequence[Term], *, name: 
         return IdentityResult(name, Status.UNDECIDED, f"{exc} before the check finished",
                               witness=w0.describe(states) if w0 else None,
                               numeric_points=len(witnesses), seconds=time.monotonic() - start)
-    seconds = time.monotonic() - start
-    wjson = witness.describe(states) if witness else None
+    return _verdict(name, exact_zero, refuted, worst, residue_check, differences,
+                    witness.describe(states) if witness else None, points, time.monotonic() - start)
+
+
+def _numeric_witnesses(claimed, reference, states, parameters, values, rng, points, deadline, witnesses):
+    """The worst (relative difference, witness, difference, scale) over ``points`` random witnesses."""
+    exprs = [term.expr for term in list(claimed) + list(reference)]
+    worst = None
+    for _ in range(points):
+        deadline.check()
+        w = make_witness(states, parameters, fixed=values, rng=rng)
+        witnesses.append(w)
+        vals = evaluate_many(exprs, w)
+        diff = sum(vals[: len(claimed)]) - sum(vals[len(claimed):])
+        scale = max(1.0, sum(abs(v) for v in vals))
+        rel = abs(diff) / scale
+        if worst is None or rel > worst[0]:
+            worst = (rel, w, diff, scale)
+    return worst
+
+
+def _verdict(name, exact_zero, refuted, worst, rc, differences, wjson, points, seconds) -> IdentityResult:
+    """The status of an identity from the exact reduction, the residue check and the numeric witnesses."""
     if exact_zero:
         wdiff = worst[2] if worst else None
         note = "" if not refuted else (" (a numeric witness disagreed by a relative "
@@ -189,7 +204,6 @@ def check_identity(claimed: Sequence[Term], reference: Sequence[Term], *, name: 
                               f"the difference reduces to 0 modulo the constraints; checked numerically at "
                               f"{points} random witnesses first{note}",
                               (), wjson, wdiff, points, seconds)
-    rc = residue_check
     if rc.refutes:
         return IdentityResult(name, Status.FAILED,
                               f"claimed − derived reduces to a nonzero residue of {rc.n_terms} term(s), "

@@ -28,9 +28,10 @@ import sympy
 from sympy.core.function import AppliedUndef
 
 from ..declare.functional import outer_integrals, split_outer
-from ..declare.parameters import Kind, Parameters, apply_substitution
+from ..declare.parameters import ParameterKind, Parameters, apply_substitution
 from ..declare.states import Frame, Vector
 from ..declare.symbols import t
+from ..errors import UnsupportedInput
 
 __all__ = ["Witness", "make_witness", "evaluate", "witness_constant"]
 
@@ -116,7 +117,7 @@ def make_witness(states: Sequence[Vector], parameters: Parameters, *, fixed: Map
     for spec in parameters:
         if spec.name in values:
             continue
-        if spec.kind is Kind.UNIT_VECTOR:
+        if spec.kind is ParameterKind.UNIT_VECTOR:
             values[spec.name] = sympy.ImmutableMatrix(_cayley_rotation(rng)[:, 0])
         else:
             values[spec.name] = spec.random_value(rng)
@@ -199,7 +200,7 @@ def _compile(exprs, bound: tuple, histories: dict):
     bodies = [b.xreplace(dict(zip(apps, app_holders))) for b in bodies]
     leftovers = set().union(*[b.free_symbols for b in bodies]) - set(bound) - set(holders) - set(app_holders)
     if leftovers:
-        raise ValueError(f"cannot evaluate numerically: unassigned symbols {sorted(map(str, leftovers))}")
+        raise UnsupportedInput(f"cannot evaluate numerically: unassigned symbols {sorted(map(str, leftovers))}")
     f = sympy.lambdify(list(bound) + holders + app_holders, bodies, modules="math", cse=True)
     arg_fns = [(histories[a.func], sympy.lambdify(list(bound), a.args[0], modules="math")) for a in apps]
     quads = []

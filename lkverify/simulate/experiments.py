@@ -1,0 +1,339 @@
+"""Experiments on simulated runs: what a paper says about its numerical examples.
+
+A :class:`Run` is one simulation (a system, parameter values, an initial history);
+:class:`Series` a plotted quantity; :class:`EnvelopeSpec` a predicted decay envelope.
+A :class:`RunClaim` states what the paper says about runs ("converges", "does not
+converge", "bounded but not attractive", "faster", "smoother", "sensitive"); checking
+one returns a :class:`~lkverify.report.results.Result` with status ``simulated``
+(observed along numerical trajectories — never ``exact`` or ``certified``) or
+``failed``, with the numbers that show it.  :class:`RunSummary` is what one run did.
+
+The catalogue item that holds runs and claims is :class:`lkverify.catalogue.examples.Example`.
+
+>>> import numpy as np
+>>> _time_to(np.array([0.0, 1.0, 2.0]), np.array([1.0, 0.5, 0.001]), 1e-2)
+2.0
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Callable, Mapping
+
+import numpy as np
+
+from ..errors import InputError
+from ..report.results import Result
+from ..status import Status
+from ..declare.system import System
+from .runs import Trajectory, simulate
+from .solver import Outcome
+
+__all__ = ["BoundedNotAttractive", "Converges", "DoesNotConverge", "EnvelopeSpec", "FasterThan", "FromValues", "Run", "along",
+           "RunClaim", "RunSummary", "Sensitive", "Series", "SmootherThan"]
+
+
+@dataclasses.dataclass(frozen=True)
+class FromValues:
+    """A quantity along a run that depends on the run's parameter values.
+
+    ``build(values)`` returns ``f(states)``; the claims call it with the run's resolved
+    values (:attr:`lkverify.simulate.runs.Trajectory.values`), so that an energy or a
+    distance follows ``J``, ``r1``… set by the user instead of retyping the defaults.
+
+    >>> energy = FromValues(lambda v: (lambda states: v["k"] * states["x"][:, 0] ** 2))
+    >>> import numpy as np
+    >>> float(along(energy, {"x": np.array([[2.0]])}, {"k": 3})[0])
+    12.0
+    """
+
+    build: Callable
+
+    def bind(self, values: Mapping) -> Callable:
+        return self.build(values)
+
+
+def along(quantity, states: Mapping, values: Mapping | None = None):
+    """``quantity(states)``, binding a :class:`FromValues` quantity to ``values`` first."""
+    if isinstance(quantity, FromValues):
+        quantity = quantity.bind(dict(values or {}))
+    return quantity(states)
+
+
+@dataclasses.dataclass(frozen=True)
+class Run:
+    """One simulation of an example: a label, a system, parameter values, an initial history."""
+
+    label: str
+    system: System
+    values: Mapping = dataclasses.field(default_factory=dict)
+    history: Mapping = dataclasses.field(default_factory=dict)
+
+
+@dataclasses.dataclass(frozen=True)
+class Series:
+    """A plotted quantity: ``fn(states)`` → array over the samples (states: name → (m, dim) array)."""
+
+    label: str
+    fn: Callable
+
+
+@dataclasses.dataclass(frozen=True)
+class EnvelopeSpec:
+    """A predicted envelope: ``bound(t, chi)`` for the quantity ``quantity(states)``, with ‖χ‖_τ = ``chi``."""
+
+    label: str
+    quantity: Series
+    bound: Callable
+    chi: Callable  # chi(run) -> float, the history norm the envelope is stated in
+    run: str
+
+
+@dataclasses.dataclass(frozen=True)
+class RunSummary:
+    """What a run did: outcome, convergence, times to reach 1e-2 and 1e-3, final values."""
+
+    label: str
+    outcome: Outcome
+    converged: bool
+    t_1e2: float | None
+    t_1e3: float | None
+    final_distance: float
+    final_series: dict
+    max_distance: float
+    constraint_drift: dict
+    steps: int
+    seconds: float
+    t_end: float
+
+    @property
+    def status(self) -> Status:
+        """The status of what the run showed (see :attr:`Outcome.status`)."""
+        return self.outcome.status
+
+    def to_json(self) -> dict:
+        out = dataclasses.asdict(self)
+        out["outcome"] = self.outcome.value
+        return out
+
+
+def _time_to(t, d, level) -> float | None:
+    """First time after which d stays below level (None if it does not by the end)."""
+    above = np.nonzero(d >= level)[0]
+    if above.size == 0:
+        return float(t[0])
+    k = above[-1]
+    if k == len(d) - 1:
+        return None
+    return float(t[k + 1])
+
+
+def _fmt(x) -> str:
+    return "never" if x is None else f"t = {x:.4g}"
+
+
+def _damping_expr(h):
+    """The damping as a SymPy expression in t (accepts an expression or a string, parsed safely)."""
+    import sympy
+
+    from ..declare.parse import parse_value
+    from ..declare.symbols import t
+
+    expr = parse_value(h, name="damping", variables={"t": t}) if isinstance(h, str) else sympy.sympify(h)
+    if expr.free_symbols - {t}:
+        raise InputError(f"damping: expected an expression in t, got {expr}; write the damping h as a function "
+                         f"of t alone")
+    return expr
+
+
+def _tail_integral(h, T: float) -> float:
+    """∫_T^∞ h(t) dt, exactly by SymPy (inf when it diverges)."""
+    import sympy
+
+    from ..declare.symbols import t
+
+    val = sympy.integrate(_damping_expr(h), (t, sympy.nsimplify(T), sympy.oo))
+    return float("inf") if val in (sympy.oo, sympy.zoo) or not val.is_finite else float(val)
+
+
+# -- claims about runs --------------------------------------------------------------------------
+class RunClaim:
+    """A statement a paper makes about a run; ``check`` returns a simulation Result."""
+
+    name = "claim"
+
+    def check(self, example, trajectories: Mapping[str, Trajectory]) -> Result:  # pragma: no cover
+        raise NotImplementedError
+
+    def _res(self, ok: bool, value, detail: str) -> Result:
+        return Result("simulation", self.name, Status.SIMULATED if ok else Status.FAILED, value, detail)
+
+
+@dataclasses.dataclass(frozen=True)
+class Converges(RunClaim):
+    """The distance to the equilibrium ends below ``tol`` and the run succeeded."""
+
+    run: str
+    tol: float = 1e-3
+    by: float | None = None  # ... and is below tol by this time
+
+    @property
+    def name(self):
+        return f"{self.run}: converges"
+
+    def check(self, example, trajectories):
+        s = example.summary(self.run, trajectories[self.run])
+        ok = s.outcome is Outcome.SUCCESS and s.final_distance < self.tol
+        if self.by is not None:
+            tr = trajectories[self.run]
+            t_tol = _time_to(tr.t, np.asarray(along(example.distance, tr.states, tr.values)), self.tol)
+            ok = ok and t_tol is not None and t_tol <= self.by
+        return self._res(ok, {"final_distance": s.final_distance, "t_1e2": s.t_1e2, "t_1e3": s.t_1e3},
+                         f"distance {s.final_distance:.3g} at t = {s.t_end:g} (need < {self.tol:g}"
+                         + (f" by t = {self.by:g}" if self.by is not None else "") + f"); 1e-3 reached at {_fmt(s.t_1e3)}")
+
+
+@dataclasses.dataclass(frozen=True)
+class DoesNotConverge(RunClaim):
+    """Over the last ``tail`` fraction of the run the distance stays above ``floor``."""
+
+    run: str
+    floor: float = 1e-2
+    tail: float = 0.25
+
+    @property
+    def name(self):
+        return f"{self.run}: does not converge"
+
+    def check(self, example, trajectories):
+        tr = trajectories[self.run]
+        d = np.asarray(along(example.distance, tr.states, tr.values))
+        k = int(len(d) * (1 - self.tail))
+        lo = float(np.min(d[k:]))
+        ok = tr.outcome is Outcome.SUCCESS and lo > self.floor
+        return self._res(ok, {"min_distance_tail": lo, "t_from": float(tr.t[k])},
+                         f"min distance over t ∈ [{tr.t[k]:.4g}, {tr.t[-1]:.4g}] is {lo:.3g} (need > {self.floor:g})")
+
+
+@dataclasses.dataclass(frozen=True)
+class BoundedNotAttractive(RunClaim):
+    """Bounded, and the energy tends to a positive limit (Remark 2 of paper 001).
+
+    With damping h, Remark 2's inequality −α̃ h Ṽ ≤ dṼ/dt gives Ṽ(∞) ≥ Ṽ(T) exp(−α̃ ∫_T^∞ h).
+    The rate α̃ is *measured*: the largest ln(Ṽ(a)/Ṽ(b)) / ∫_a^b h over consecutive windows of
+    the second half of the run; the extrapolated lower bound Ṽ(T) exp(−α̃ ∫_T^∞ h) must exceed
+    ``fraction`` · Ṽ(T).  For a non-integrable h the tail is infinite and the bound is 0, so the
+    claim fails, as it should for an attractive equilibrium.
+    """
+
+    run: str
+    measure: Callable
+    damping: object  # the damping h as an expression in t (or a string)
+    bound: float
+    fraction: float = 1e-3
+    windows: int = 8
+
+    @property
+    def name(self):
+        return f"{self.run}: bounded but not attractive"
+
+    def check(self, example, trajectories):
+        import scipy.integrate
+        import sympy
+
+        from ..declare.symbols import t as tsym
+
+        h = sympy.lambdify([tsym], _damping_expr(self.damping), modules="numpy")
+        tr = trajectories[self.run]
+        d = np.asarray(along(example.distance, tr.states, tr.values))
+        E = np.asarray(along(self.measure, tr.states, tr.values))
+        edges = np.linspace(tr.t[-1] / 2, tr.t[-1], self.windows + 1)
+        idx = np.searchsorted(tr.t, edges).clip(0, len(tr.t) - 1)
+        rates = []
+        for i, j in zip(idx[:-1], idx[1:]):
+            H = scipy.integrate.quad(h, tr.t[i], tr.t[j], limit=200)[0]
+            rates.append(np.log(E[i] / E[j]) / H)
+        rate = max(0.0, float(max(rates)))
+        tail = _tail_integral(self.damping, float(tr.t[-1]))
+        lower = float(E[-1] * np.exp(-rate * tail)) if np.isfinite(tail) else 0.0
+        ok = tr.outcome is Outcome.SUCCESS and float(np.max(d)) <= self.bound and lower > self.fraction * E[-1]
+        return self._res(ok, {"max_distance": float(np.max(d)), "measured_rate": rate, "tail_integral": tail,
+                              "energy_end": float(E[-1]), "energy_limit_lower": lower},
+                         f"max distance {np.max(d):.3g} (bound {self.bound:g}); measured decay rate α̃ = {rate:.3g} per "
+                         f"unit ∫h; ∫_T^∞ h = {tail:.3g}; energy {E[-1]:.3g} at T, limit ≥ {lower:.3g} (extrapolated)")
+
+
+@dataclasses.dataclass(frozen=True)
+class Sensitive(RunClaim):
+    """Chaotic-looking: a perturbation of ``perturbation`` in ω's history grows to ``level`` in the plotted series."""
+
+    run: str
+    perturbation: float = 1e-8
+    level: float = 1e-2
+
+    @property
+    def name(self):
+        return f"{self.run}: sensitive dependence on the initial data"
+
+    def check(self, example, trajectories):
+        tr = trajectories[self.run]
+        base = next(r for r in example.runs if r.label == self.run)
+        hist = dict(base.history)
+        hist["omega"] = list(np.asarray(hist["omega"], dtype=float) + self.perturbation)
+        other = simulate(base.system, history=hist, t_end=float(tr.t[-1]), values=base.values,
+                         step=example.step, t_eval=tr.t)
+        sep = np.max([np.abs(np.asarray(along(s.fn, tr.states, tr.values)) - np.asarray(along(s.fn, other.states, other.values))) for s in example.series],
+                     axis=0)
+        k = np.nonzero(sep > self.level)[0]
+        t_sep = float(tr.t[k[0]]) if k.size else None
+        ok = other.outcome is Outcome.SUCCESS and t_sep is not None
+        return self._res(ok, {"perturbation": self.perturbation, "max_separation": float(np.max(sep)),
+                              "t_separation": t_sep},
+                         f"histories {self.perturbation:g} apart separate to {np.max(sep):.3g} "
+                         + (f"(above {self.level:g} from t = {t_sep:.4g})" if t_sep is not None else
+                            f"(never above {self.level:g})"))
+
+
+@dataclasses.dataclass(frozen=True)
+class FasterThan(RunClaim):
+    """Run ``a`` reaches ``level`` (and stays below) earlier than run ``b``."""
+
+    a: str
+    b: str
+    level: float = 1e-2
+
+    @property
+    def name(self):
+        return f"{self.a} reaches {self.level:g} before {self.b}"
+
+    def check(self, example, trajectories):
+        ta, tb = (_time_to(tr.t, np.asarray(along(example.distance, tr.states, tr.values)), self.level)
+                  for tr in (trajectories[self.a], trajectories[self.b]))
+        ok = ta is not None and (tb is None or ta < tb)
+        return self._res(ok, {"t_a": ta, "t_b": tb}, f"{self.a}: {_fmt(ta)}; {self.b}: {_fmt(tb)}")
+
+
+@dataclasses.dataclass(frozen=True)
+class SmootherThan(RunClaim):
+    """The plotted series of run ``a`` have fewer local extrema (oscillations) than those of ``b``."""
+
+    a: str
+    b: str
+
+    @property
+    def name(self):
+        return f"{self.a} smoother than {self.b}"
+
+    def check(self, example, trajectories):
+        def extrema(tr):
+            n = 0
+            for s in example.series:
+                y = np.asarray(along(s.fn, tr.states, tr.values))
+                dy = np.diff(y)
+                dy = dy[np.abs(dy) > 1e-12 * max(1.0, float(np.max(np.abs(y))))]
+                n += int(np.sum(np.sign(dy[1:]) != np.sign(dy[:-1])))
+            return n
+
+        na, nb = extrema(trajectories[self.a]), extrema(trajectories[self.b])
+        return self._res(na < nb, {"extrema_a": na, "extrema_b": nb},
+                         f"local extrema of the plotted series: {self.a} {na}, {self.b} {nb}")

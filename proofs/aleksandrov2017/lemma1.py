@@ -1,0 +1,159 @@
+"""Lemma 1 of paper 001 (= inequality (10) of paper 000), with a certified δ(ε).
+
+For a1, a2 > 0 and ε ∈ (0, 1) there is δ > 0 with
+
+    (6)  ‖a1 r1×s1 + a2 r2×s2‖² ≥ ε(a1²‖r1−s1‖² + a2²‖r2−s2‖²)  when ‖s1−r1‖² + ‖s2−r2‖² < δ².
+
+sᵢ = R rᵢ for a rotation R (the triad moves rigidly).  With the unit quaternion (q0, σu),
+σ = sin(φ/2) ∈ [0, 1] for the rotation angle φ ∈ [0, π]:  sᵢ − rᵢ = σ Δᵢ,
+
+    Δᵢ = 2q0 u×rᵢ + 2σ u×(u×rᵢ),  q0 = √(1 − σ²)   (no division: no removable singularity),
+
+and (6) divided by σ² reads F(σ, u) = ‖Σ aᵢ rᵢ×Δᵢ‖² − εΣ aᵢ²‖Δᵢ‖² ≥ 0.  By (8),
+‖sᵢ − rᵢ‖ = 2|sin χᵢ| σ with χᵢ the angle between u and rᵢ, and for orthonormal r1, r2:
+sin²χ1 + sin²χ2 = 2 − (u·r1)² − (u·r2)² ≥ 1, so ‖s1−r1‖² + ‖s2−r2‖² < δ² forces σ < δ/2.
+Hence F ≥ 0 on σ ∈ [0, σ̄] for every u proves the lemma with δ = 2σ̄.
+"""
+
+import numpy as np
+import sympy
+
+from lkverify import Budget, Check, InputError, Report, Result, Status
+from lkverify.certify.bounds import certify_positive, unit_vector_angles
+
+from .equations import PAPER, P
+
+__all__ = ["lemma1", "lemma1_F", "lemma1_delta", "Lemma1Constants", "EPSILONS"]
+
+_sig, _th, _ph = sympy.symbols("sigma theta phi", real=True)
+_U = unit_vector_angles(_th, _ph)  # the rotation axis u(θ, φ)
+EPSILONS = (sympy.Rational(1, 2), sympy.Rational(9, 10), sympy.Rational(99, 100))
+_DEFAULTS = P.resolve({})  # a1 = a2 = 1 and the base axes r1, r2 of section 6, from the declarations
+
+_Q = np.linalg.qr(np.random.default_rng(7).normal(size=(3, 3)))[0]
+_ROTATED_PAIRS = (np.array([[0.6, -0.8, 0], [0.8, 0.6, 0], [0, 0, 1]]), _Q)  # other orthonormal pairs (r1, r2)
+
+
+def lemma1_F(eps, a1_=None, a2_=None, r1_=None, r2_=None):
+    """F(σ, θ, φ) of the module docstring (u in spherical angles); unset arguments: the declared defaults."""
+    a1_ = _DEFAULTS["a1"] if a1_ is None else a1_
+    a2_ = _DEFAULTS["a2"] if a2_ is None else a2_
+    r1_ = _DEFAULTS["r1"] if r1_ is None else r1_
+    r2_ = _DEFAULTS["r2"] if r2_ is None else r2_
+    u = _U.value
+    q0 = sympy.sqrt(1 - _sig**2)
+    terms, norms = sympy.zeros(3, 1), 0
+    for a, r in ((a1_, sympy.Matrix(r1_)), (a2_, sympy.Matrix(r2_))):
+        D = 2 * q0 * u.cross(r) + 2 * _sig * u.cross(u.cross(r))  # Δᵢ
+        terms += a * r.cross(D)
+        norms += a**2 * D.dot(D)
+    return sympy.expand(terms.dot(terms) - eps * norms)
+
+
+def _lemma1_sigma_estimate(eps, r1_=None, r2_=None, n=121):
+    """The first σ where min_u F(σ, u) ≤ 0 (sampled, then bisected): an estimate of σ̄."""
+    f = sympy.lambdify((_sig, _th, _ph), lemma1_F(eps, r1_=r1_, r2_=r2_), "numpy")
+    T, Ph = np.meshgrid(np.linspace(0, np.pi, n), np.linspace(0, 2 * np.pi, 2 * n))
+
+    def m(s):
+        return float(np.min(f(s, T, Ph)))
+
+    lo, hi = 0.0, 0.999
+    if m(hi) > 0:
+        return hi
+    for _ in range(50):
+        mid = (lo + hi) / 2
+        lo, hi = (mid, hi) if m(mid) > 0 else (lo, mid)
+    return lo
+
+
+def lemma1_delta(eps, *, budget_seconds=20.0):
+    """Certified δ(ε) (a1, a2, r1, r2 the declared defaults) and the sampled estimate of the largest δ.
+
+    Returns
+    -------
+    (CheckResult, sympy.Rational, float)
+        The certification of F ≥ 0 on σ ≤ δ/2, the certified δ, the estimate of the largest δ.
+    """
+    eps = sympy.Rational(eps)
+    est = _lemma1_sigma_estimate(float(eps))
+    F = lemma1_F(eps)
+    sbar = sympy.Rational(est * 0.995).limit_denominator(10**6)
+    chk = None
+    for _ in range(6):
+        box = {_sig: (0, sbar), **_U.region}
+        chk = certify_positive(F, box, name=f"F ≥ 0 for σ ≤ {sbar}", budget=Budget(seconds=budget_seconds / 3))
+        if chk.status is Status.CERTIFIED:
+            break
+        sbar = sbar * sympy.Rational(9, 10)
+    return chk, 2 * sbar, 2 * est
+
+
+def _lemma1_check(v, *, budget=60.0):
+    eps_values = [v["eps"]] if v.get("eps") is not None else list(EPSILONS)
+    out = []
+    for eps in eps_values:
+        if not (0 < eps < 1):
+            raise InputError(f"eps: Lemma 1 needs 0 < ε < 1, got eps={eps}; e.g. --set eps=0.9")
+        chk, delta, est = lemma1_delta(eps, budget_seconds=budget / len(eps_values))
+        others = [2 * _lemma1_sigma_estimate(float(eps), r1_=R[:, 0], r2_=R[:, 1]) for R in _ROTATED_PAIRS]
+        status = Status.CERTIFIED if chk.status is Status.CERTIFIED else chk.status
+        out.append(Result("region", f"delta(eps={eps})", status,
+                          {"certified": float(delta), "estimate_largest": est, "eps": float(eps),
+                           "estimates_other_orthonormal_pairs": others, "boxes": chk.boxes},
+                          f"(6) holds when ‖s1−r1‖² + ‖s2−r2‖² < δ² with δ = {float(delta):.6g} (certified: F ≥ 0 "
+                          f"on σ ≤ δ/2, {chk.boxes} boxes, {chk.seconds:.1f} s); sampled largest δ ≈ {est:.6g}; "
+                          f"other orthonormal r1, r2 give {', '.join(f'{x:.6g}' for x in others)} (the problem is "
+                          f"invariant under rotating the pair)"))
+    return out
+
+
+class Lemma1Constants:
+    """The constants job of Lemma 1: certified δ(ε), and the figure of δ(ε).
+
+    It has the interface ``lkverify constants`` expects of an item's ``constants`` (the one of
+    :class:`lkverify.certify.constants.ConstantsJob`): ``goals``, ``run`` and ``plot``.  Unlike a
+    ConstantsJob it has no templates and no decay model: the result is the region δ(ε) itself.
+    """
+
+    #: the goals ``lkverify constants --goal`` accepts
+    goals = ["default"]
+
+    def run(self, item_name, values, shown, *, budget=150.0, progress=None, goal=None):
+        """Certify δ(ε) for ``values["eps"]`` (unset: each of :data:`EPSILONS`) within ``budget`` seconds.
+
+        Returns
+        -------
+        (Report, dict)
+            The report and the data of :meth:`plot` (``{"results": ...}``).
+        """
+        if progress:
+            progress(f"{item_name}: certifying δ(ε)")
+        results = tuple(_lemma1_check(values, budget=budget))
+        bad = [r.name for r in results if not r.status.holds]
+        verdict = "certified δ(ε)" if not bad else f"undecided: {', '.join(bad)}"
+        return Report(item_name, dict(shown), results, verdict), {"results": results}
+
+    def plot(self, extra, path, *, values=None):
+        """Write the sampled largest δ(ε) and the certified points to ``path``."""
+        from matplotlib.figure import Figure  # matplotlib only for figures: not at catalogue load time
+
+        eps_grid = np.linspace(0.05, 0.99, 40)
+        est = [2 * _lemma1_sigma_estimate(e, n=61) for e in eps_grid]
+        fig = Figure(figsize=(6, 4))
+        ax = fig.subplots()
+        ax.plot(eps_grid, est, label="largest δ (sampled estimate)")
+        pts = [(r.value["eps"], r.value["certified"]) for r in extra["results"] if r.value]
+        if pts:
+            ax.plot(*zip(*pts), "o", label="certified δ(ε)")
+        ax.set_xlabel("ε")
+        ax.set_ylabel("δ(ε)")
+        ax.set_title("Lemma 1 of paper 001 (a1 = a2 = 1)")
+        ax.grid(alpha=0.3)
+        ax.legend()
+        fig.tight_layout()
+        fig.savefig(path, dpi=120)
+
+
+lemma1 = Check("lemma1", parameters=P, checks=[_lemma1_check], relevant=("eps",), constants=Lemma1Constants(),
+               paper=PAPER, title="Lemma 1: ‖a1 r1×s1 + a2 r2×s2‖² ≥ ε(…) for ‖s−r‖ < δ(ε); certified δ(ε)")

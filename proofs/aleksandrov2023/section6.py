@@ -1,0 +1,62 @@
+"""Section 6 of paper 002: the data shared by the numerical examples (Figs. 1–7).
+
+Θ = diag(5,6,4), r = (1,1,1)/√3, F = h·I; constant initial functions on [−τ, 0] from the
+aircraft angles (φ, θ, ψ) = (0.5, 0.6, −0.8) and ω = (1,1,1) (Figs. 1–6), or
+(0.8, 0.8, −0.8) and ω = 0.1(1,1,1) (Fig. 7).  The target r is taken from the declared
+default of the parameter r, never retyped.
+"""
+
+import numpy as np
+
+from lkverify.catalogue.examples import Example
+from lkverify.simulate import Run, Series
+from lkverify.simulate.rigidbody import inertial_vectors_from_angles
+
+from .equations import PAPER, P, system
+
+__all__ = ["R_TARGET", "initial_history", "SECTION6", "FIG7_HISTORY", "DIRECTION_COSINES", "s_minus_r", "distance",
+           "gains", "figure", "FIG1", "FIG4", "FIG6", "PRINTED_15"]
+
+R_TARGET = np.array([float(x) for x in P["r"].default])  # r = (1,1,1)/√3 of section 6
+
+
+def initial_history(angles, omega0):
+    """Constant history: s from the aircraft angles (default convention of lkverify.simulate.rigidbody), ω."""
+    return {"s": list(inertial_vectors_from_angles(*angles, R_TARGET)), "omega": list(omega0)}
+
+
+SECTION6 = initial_history((0.5, 0.6, -0.8), (1.0, 1.0, 1.0))
+FIG7_HISTORY = initial_history((0.8, 0.8, -0.8), (0.1, 0.1, 0.1))
+
+
+def s_minus_r(states):
+    """‖s(t) − r‖ along a trajectory."""
+    return np.linalg.norm(states["s"] - R_TARGET, axis=1)
+
+
+def distance(states):
+    """‖χ(t)‖ = ‖(s − r, ω)‖ in R⁶."""
+    return np.sqrt(s_minus_r(states) ** 2 + np.sum(states["omega"] ** 2, axis=1))
+
+
+DIRECTION_COSINES = [Series(f"s_{c}", lambda st, i=i: st["s"][:, i]) for i, c in enumerate("xyz")]
+
+
+def gains(h, a, b, tau, mu):
+    """The parameter values of a figure: F = h·I and the gains a, b, τ, μ (as printed)."""
+    return {"F": f"diag({h},{h},{h})", "a": a, "b": b, "tau": tau, "mu": mu}
+
+
+def figure(name, title, values, claims, *, t_end, history=SECTION6, envelope=None, samples=4001):
+    """One figure of section 6: a single run of (10), (12), the direction cosines plotted up to t = 100."""
+    return Example(name, title=title, runs=[Run(title, system, values, history)], t_end=t_end,
+                   series=DIRECTION_COSINES, distance=distance, claims=claims, ylabel="direction cosines",
+                   envelope=envelope, samples=samples, plot_until=100, paper=PAPER)
+
+
+FIG1 = gains("0.7", a="2", b="2", tau="0.9", mu="1")
+FIG4 = gains("0.2", a="0.6", b="-0.6", tau="0.9", mu="1")
+FIG6 = gains("1", a="0", b="-1", tau="1", mu="2")
+
+# Estimate (15) as printed: ‖s(t) − r‖ ≤ 9.21‖χ‖_τ (1 + 0.23‖χ‖_τ (t − t0))^{−1} for ‖χ‖_τ < 0.28.
+PRINTED_15 = {"d1": 9.21, "d2": 7.44, "d3": 0.23, "delta_tilde": 0.28}

@@ -1,0 +1,26 @@
+"""Theorem 2 of paper 000: under Assumptions 1–2 the equilibrium of (2), (13) is asymptotically stable.
+
+With G = g(ζ)I: Ξ = βI + ∫_0^∞ G = (β + ∫_0^∞ g) I, Assumption 2: ΞD + DΞᵀ ≻ 0; Remark 3
+reduces it to β + ∫_0^∞ g > 0 (D ≻ 0); Assumption 1 for g = e^{−aζ} holds with σ = 1/a.
+"""
+
+import sympy
+
+from lkverify import Hypothesis, MatrixHypothesis, Theorem, zeta
+
+from .equations import PAPER, D, beta, g, system_pid
+
+__all__ = ["theorem2", "Xi"]
+
+int_g = sympy.Integral(g(zeta), (zeta, 0, sympy.oo))  # ∫_0^∞ g(ζ)dζ
+Xi = (beta + int_g) * sympy.eye(3)  # Ξ = βI + ∫_0^∞ G(ζ)dζ
+
+theorem2 = Theorem(
+    "theorem2",
+    title="Theorem 2: nonlinear PID with a fading-memory kernel; Assumption 2 checked with its margin",
+    system=system_pid,
+    hypotheses=[MatrixHypothesis("Xi*D + D*Xi^T > 0", Xi * D + D * Xi.T, reference="(Assumption 2)"),
+                Hypothesis("beta + int g > 0", beta + int_g, reference="(Remark 3)")],
+    unchecked=["Assumption 1 (∫_ζ^∞|G| ≤ σ|G(ζ)|)", "functional (14) and the bounds with c1…c12"],
+    paper=PAPER,
+)

@@ -1,0 +1,80 @@
+"""Decay models and the constants job: input checks, the search's deadline, the job's tuning."""
+
+import dataclasses
+import time
+
+import pytest
+import sympy
+
+from lkverify.certify.constants import ConstantsJob, ConstantsTuning
+from lkverify.certify.decay import DecayModel, certify_decay, estimate_decay, search_parameters
+from lkverify.errors import InputError, UnsupportedInput
+from lkverify.options import Budget, Deadline
+from lkverify.status import Status
+
+w, e = sympy.symbols("w e", nonnegative=True)
+a = sympy.Symbol("a", positive=True)
+
+
+def family(params):
+    """V = w² + e², V̇ ≤ −a(w³ + e³) on 0 ≤ w, e ≤ 1/2: c̃ = a/√2."""
+    half, Q = sympy.Rational(1, 2), w**2 + e**2
+    return DecayModel("family", (w, e), {w: half, e: half}, Q, Q, -params["a"] * (w**3 + e**3),
+                      sympy.Rational(3, 2), (w, e), {}, {"d1": e, "d2": w})
+
+
+def test_estimate_matches_the_closed_form():
+    est = estimate_decay(family({"a": 2}))
+    assert est["c_tilde"] == pytest.approx(2 / 2**0.5, rel=1e-6)
+    assert est["l_e"] == pytest.approx(1.0) and est["l_w"] == pytest.approx(1.0)
+
+
+def test_a_model_outside_the_scaling_argument_is_unsupported_not_failed():
+    bad = dataclasses.replace(family({"a": 1}), vdot=-w**2 + e**2)
+    with pytest.raises(UnsupportedInput, match="positive term"):
+        certify_decay(bad, c_tilde=1, lower_coefficients={e: 1}, delta_tilde=sympy.Rational(1, 10))
+    assert estimate_decay(bad) is None            # for a search: these values do not work, try others
+
+
+def test_models_are_validated_when_created():
+    with pytest.raises(InputError, match="got none for e"):
+        DecayModel("m", (w, e), {w: 1}, w**2, w**2, -w**3, sympy.Rational(3, 2), (w,), {}, {"d1": w})
+    with pytest.raises(UnsupportedInput, match="one or two point variables"):
+        DecayModel("m", (w, e), {w: 1, e: 1}, w**2, w**2, -w**3, sympy.Rational(3, 2), (), {}, {"d1": w})
+
+
+def test_certificate_budget_is_a_budget_object():
+    cert = certify_decay(family({"a": 1}), c_tilde=sympy.Rational(7, 10), delta_tilde=sympy.Rational(1, 4),
+                         lower_coefficients={e: sympy.Rational(9, 10), w: sympy.Rational(9, 10)},
+                         budget=Budget(seconds=30))
+    assert cert.status is Status.CERTIFIED
+    assert cert.constants["c_tilde"] == pytest.approx(0.7)
+
+
+def test_search_stops_cleanly_at_its_deadline_with_the_best_point():
+    deadline = Deadline(0.2)
+    t0 = time.monotonic()
+    params, est = search_parameters(family, {"a": (0.5, 2.0)}, objective=lambda r: -r["c_tilde"],
+                                    maxiter=10_000, deadline=deadline)
+    assert time.monotonic() - t0 < 5                  # stopped by the callback, not by maxiter
+    assert 0.5 <= params["a"] <= 2.0 and est is not None
+
+
+def test_search_without_deadline_finds_the_best_parameter():
+    params, est = search_parameters(family, {"a": (0.5, 2.0)}, objective=lambda r: -r["c_tilde"], maxiter=20)
+    assert params["a"] == pytest.approx(2.0, rel=1e-2)
+
+
+def test_constants_tuning_is_frozen_and_documented_defaults():
+    tune = ConstantsTuning()
+    assert (tune.rounds, tune.attempts, tune.grid, tune.certify_seconds) == (5, 6, 31, 60.0)
+    assert tune.shrink == sympy.Rational(9, 10) and tune.candidate_margin == sympy.Rational(99, 100)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        tune.rounds = 1  # type: ignore[misc]
+
+
+def test_goal_messages_speak_the_library_language():
+    job = ConstantsJob(templates=[], model=None, free={}, objective={"paper": None, "region": None})
+    with pytest.raises(InputError) as info:
+        job.run("x", {}, {}, goal="fastest")
+    assert "--" not in str(info.value) and "paper" in str(info.value)

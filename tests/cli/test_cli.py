@@ -1,0 +1,145 @@
+"""The command line: acceptance commands, bad input, a user's own proof file."""
+
+import json
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from lkverify.cli import main
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def run(capsys, *argv):
+    code = main(list(argv))
+    out = capsys.readouterr()
+    return code, out.out, out.err
+
+
+def test_list(capsys):
+    code, out, _ = run(capsys, "list")
+    assert code == 0
+    assert "aleksandrov2023.theorem3" in out and "aleksandrov2026.theorem1" in out
+
+
+def test_theorem3_holds_at_the_fig6_gains(capsys):
+    code, out, _ = run(capsys, "check", "aleksandrov2023.theorem3", "--set", "a=0", "--set", "b=-1",
+                       "--set", "tau=1", "--set", "mu=2", "--json")
+    assert code == 0
+    doc = json.loads(out)
+    assert {"item", "parameters", "results", "verdict"} <= set(doc)
+    by_name = {r["name"]: r for r in doc["results"]}
+    assert by_name["Vdot_structured"]["status"] == "exact"
+    assert by_name["Vdot_structured"]["kind"] == "identity"
+    assert by_name["mu > 1"]["status"] == "exact" and by_name["mu > 1"]["value"] == 1
+    assert by_name["b*tau < a"]["status"] == "exact" and by_name["b*tau < a"]["value"] == 1
+
+
+def test_theorem3_fails_when_b_tau_exceeds_a(capsys):
+    code, out, _ = run(capsys, "check", "aleksandrov2023.theorem3", "--set", "a=0.5", "--set", "b=1",
+                       "--set", "tau=1", "--set", "mu=2")
+    assert code == 1
+    line = next(l for l in out.splitlines() if "b*tau < a" in l)
+    assert "failed" in line and "-0.5" in line
+
+
+def test_theorem1_reports_the_printed_vdot_term_by_term(capsys):
+    code, out, _ = run(capsys, "check", "aleksandrov2026.theorem1", "--json")
+    assert code == 1
+    doc = json.loads(out)
+    (ident,) = [r for r in doc["results"] if r["kind"] == "identity"]
+    assert ident["status"] == "failed"
+    (diff,) = ident["value"]["differences"]
+    assert diff["kind"] == "sign"
+    assert diff["claimed"] == ["+γf^ν(t−τ)ωᵀL(t−τ)"]
+    assert diff["difference_latex"] and diff["difference_text"]
+    assert abs(diff["value"]) > 1e-6
+    assert ident["value"]["witness"]["states_at_t"]["s1"]
+
+
+@pytest.mark.parametrize("argv, needle", [
+    (["check", "aleksandrov2023.theorm3"], "did you mean aleksandrov2023.theorem3"),
+    (["check", "aleksandrov2023.theorem3", "--set", "tau=-1"], "tau"),
+    (["check", "aleksandrov2026.theorem1", "--set", "D=diag(1,-1,1)"], "positive-definite"),
+    (["check", "aleksandrov2023.theorem3", "--set", "mu=nan"], "finite"),
+    (["check", "aleksandrov2023.theorem3", "--set", "a=1+*2"], "cannot parse"),
+    (["check", "aleksandrov2023.theorem3", "--set", "zz=1"], "no such parameter"),
+    (["check", "aleksandrov2023.theorem3", "--set", "r=[1,1,1]"], "unit vector"),
+    (["check", "aleksandrov2023.theorem3", "--set", "F=[[1,2],[3,4]]"], "3x3"),
+    (["check", "no/such/file.py"], "no such file"),
+])
+def test_bad_input_exits_2_with_one_line(capsys, argv, needle):
+    code, out, err = run(capsys, *argv)
+    assert code == 2
+    assert out == ""
+    assert len(err.strip().splitlines()) == 1 and needle in err
+    assert "Traceback" not in err
+
+
+def test_injection_is_not_executed(tmp_path):
+    sentinel = tmp_path / "pwned"
+    proc = subprocess.run([sys.executable, "-m", "lkverify", "check", "aleksandrov2023.theorem3", "--set",
+                           f"a=__import__('os').system('touch {sentinel}')"],
+                          capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 2
+    assert "not allowed" in proc.stderr and "Traceback" not in proc.stderr
+    assert not sentinel.exists()
+
+
+def _readme_proof() -> str:
+    text = (ROOT / "README.md").read_text()
+    (block,) = re.findall(r"```python\n(# my_proof.py.*?)```", text, flags=re.S)
+    return block
+
+
+def test_users_own_proof_file_from_the_readme(tmp_path, capsys):
+    path = tmp_path / "elsewhere" / "my_proof.py"
+    path.parent.mkdir()
+    path.write_text(_readme_proof())
+    code, out, _ = run(capsys, "check", str(path), "--set", "a=3", "--json")
+    assert code == 0, out
+    doc = json.loads(out)
+    assert doc["item"] == "my_proof.stable"
+    assert [r["status"] for r in doc["results"]] == ["exact", "exact"]
+
+
+def test_users_proof_with_a_wrong_claim_fails(tmp_path, capsys):
+    path = tmp_path / "bad_proof.py"
+    path.write_text(_readme_proof().replace("Term(-c * x(t - tau)[0] ** 2", "Term(c * x(t - tau)[0] ** 2"))
+    code, out, _ = run(capsys, "check", str(path), "--json")
+    assert code == 1
+    doc = json.loads(out)
+    (ident,) = [r for r in doc["results"] if r["kind"] == "identity"]
+    assert ident["value"]["differences"][0]["kind"] == "sign"
+
+
+def test_broken_proof_file_is_bad_input(tmp_path, capsys):
+    path = tmp_path / "broken.py"
+    path.write_text("import nonexistent_module_xyz\n")
+    code, _, err = run(capsys, "check", str(path))
+    assert code == 2 and "failed to load" in err
+
+
+def test_bare_command_reports_the_catalogue(capsys):
+    code, out, _ = run(capsys)
+    assert code == 0
+    assert "aleksandrov2023.theorem3" in out and "aleksandrov2026.theorem1" in out
+    assert "verdict" in out
+
+
+def test_theorem2_assumption2_margin_exact_and_refuted(capsys):
+    code, out, _ = run(capsys, "check", "aleksandrov2026.theorem2", "--json")
+    doc = json.loads(out)
+    assert code == 0
+    by = {r["name"]: r for r in doc["results"]}
+    assert by["Xi*D + D*Xi^T > 0"]["status"] == "exact" and by["Xi*D + D*Xi^T > 0"]["value"] == 6
+    assert by["beta + int g > 0"]["value"] == 1.5
+    code, out, _ = run(capsys, "check", "aleksandrov2026.theorem2", "--set", "beta=-2", "--json")
+    by = {r["name"]: r for r in json.loads(out)["results"]}
+    assert code == 1 and by["Xi*D + D*Xi^T > 0"]["status"] == "failed"
+    code, out, _ = run(capsys, "check", "aleksandrov2026.theorem2", "--set", "g=1", "--json")
+    by = {r["name"]: r for r in json.loads(out)["results"]}
+    assert code == 1 and by["beta + int g > 0"]["status"] == "failed"
