@@ -193,7 +193,7 @@ class Estimate:
     >>> Estimate(0.5, "sampling", status=Status.CERTIFIED)
     Traceback (most recent call last):
     ...
-    ValueError: an Estimate is never a proof: expected status estimated, got certified; put proved values in a margin
+    lkverify.errors.InputError: an Estimate is never a proof: expected status estimated, got certified; put proved values in a margin
     """
 
     value: float
