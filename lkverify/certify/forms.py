@@ -36,7 +36,7 @@ from .estimate import maximise
 from .intervals import enclose, float_down, float_up, lower_fraction, sign_of, to_ball, upper_fraction
 from .intervals.balls import _ipow
 
-__all__ = ["FORM_ACCURACY", "FORM_BUDGET", "FaceEnclosure", "homogeneous_positive_on_sphere"]
+__all__ = ["CubeFace", "FORM_ACCURACY", "FORM_BUDGET", "FaceEnclosure", "homogeneous_positive_on_sphere"]
 
 #: the highest arb precision (bits) tried when deciding the sign of f at a point with irrational coefficients
 SIGN_PRECISION = 512
@@ -86,7 +86,7 @@ class _ArbPoly:
         return total
 
 
-class _Face:
+class CubeFace:
     """The face x_i = 1 of the cube: g(y) = f(x)/‖x‖^d, its natural and centred (mean-value) enclosures."""
 
     def __init__(self, poly: sympy.Poly, variables, i: int, d: int):
@@ -327,7 +327,7 @@ def _branch_and_bound(form: _Form, best: _Best, budget: Budget, accuracy: Accura
     seconds = math.inf if budget.seconds is None else budget.seconds
     boxes = FORM_BUDGET.boxes if budget.boxes is None else budget.boxes
     with flint.ctx.workprec(form.prec):
-        faces = [_Face(form.poly, form.variables, i, form.d) for i in range(n)]
+        faces = [CubeFace(form.poly, form.variables, i, form.d) for i in range(n)]
         roots = [(i, (-1.0,) * (n - 1), (1.0,) * (n - 1)) for i in range(n)]
         lower0 = -float_up(best.hi) if best.hi is not None else -math.inf
         out = BranchAndBound(FaceEnclosure(faces), roots).run(

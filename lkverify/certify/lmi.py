@@ -40,8 +40,9 @@ from .intervals import enclose, float_down, lower_fraction
 from .matrices import (_as_matrix, _is_rational, _number, _rational_vector, _short, _symmetric_part,
                        matrix_positive_definite)
 
-__all__ = ["best_quadratic_upper_bound", "check_lyapunov_matrix", "check_quadratic_bound", "find_lyapunov_matrix",
-           "lmi_feasible"]
+__all__ = [
+    "best_quadratic_upper_bound", "check_lyapunov_matrix", "check_quadratic_bound", "find_lyapunov_matrix", "lmi_feasible", "round_symmetric", "solve_sdp",
+]
 
 #: find_lyapunov_matrix's attempts: (margin ε relative to max |Q|, rounding denominator as a multiple of
 #: ``denominator``); a later attempt asks the solver for more slack and rounds finer
@@ -50,7 +51,11 @@ LYAPUNOV_ATTEMPTS = ((0.0, 1), (1e-3, 1), (1e-2, 1000))
 BOUND_BUMPS = (0.0, 1e-9, 1e-6, 1e-3)
 
 
-def _solve(problem) -> str:
+def solve_sdp(problem) -> str:
+    """Solve a cvxpy problem with clarabel; its status string (``"optimal"``, …, or ``"solver error (…)"``).
+
+    The one call into the SDP solver: a status other than ``"optimal"`` is never a certificate.
+    """
     import cvxpy as cp
     try:
         problem.solve(solver=cp.CLARABEL)
@@ -59,7 +64,8 @@ def _solve(problem) -> str:
     return str(problem.status)
 
 
-def _round_matrix(X: np.ndarray, den: int) -> sympy.Matrix:
+def round_symmetric(X: np.ndarray, den: int) -> sympy.Matrix:
+    """The symmetric part of a float matrix rounded to rationals with denominators ≤ ``den`` (then verified exactly)."""
     n = X.shape[0]
     S = (X + X.T) / 2
     return sympy.Matrix(n, n, lambda i, j: _rat(S[min(i, j), max(i, j)], den))
@@ -214,7 +220,7 @@ def _lyapunov_by_sdp(Am: sympy.Matrix, Qm: sympy.Matrix | None, *, name: str, de
         lyap = Af.T @ P + P @ Af
         prob = cp.Problem(cp.Minimize(cp.trace(P)),
                           [P >> np.eye(n), lyap << -(Qf + eps * np.eye(n))])
-        status = _solve(prob)
+        status = solve_sdp(prob)
         if status != cp.OPTIMAL:
             return ConditionResult(name, Status.UNDECIDED, detail=(
                 f"{note}The SDP solver (Clarabel) returned the status {status!r}, not 'optimal'; a "
@@ -222,7 +228,7 @@ def _lyapunov_by_sdp(Am: sympy.Matrix, Qm: sympy.Matrix | None, *, name: str, de
         Pf = np.asarray(P.value, dtype=float)
         est = Estimate(float(np.min(np.linalg.eigvalsh(-(Af.T @ Pf + Pf @ Af) - (0 if Qm is None else Qf)))),
                        "λ_min of the solver's float P (Clarabel)")
-        res = check_lyapunov_matrix(Am, _round_matrix(Pf, den), Q=Qm, name=name)
+        res = check_lyapunov_matrix(Am, round_symmetric(Pf, den), Q=Qm, name=name)
         if res.status.is_proof:
             detail = (f"{note}P found by Clarabel (attempt {k}, margin ε = {eps:g}), rounded to "
                       f"denominators ≤ {den}, verified. " + " ".join(p.detail for p in res.parts))
@@ -363,7 +369,7 @@ def best_quadratic_upper_bound(M, *, N=None, name: str = "best quadratic bound",
     Nf = _floats(Nm)
     c = cp.Variable()
     prob = cp.Problem(cp.Minimize(c), [c * Nf - m >> 0 for m in Mf])
-    status = _solve(prob)
+    status = solve_sdp(prob)
     if status != cp.OPTIMAL:
         return ConditionResult(name, Status.UNDECIDED, detail=(
             f"the SDP solver (Clarabel) returned {status!r}, not 'optimal'; never a certificate."))
@@ -466,7 +472,7 @@ def lmi_feasible(F0, F: Sequence = (), *, name: str = "LMI", bound: float = 1e4,
         y = None
         cons = [F0f - t * np.eye(n) >> 0]
     prob = cp.Problem(cp.Maximize(t), cons)
-    status = _solve(prob)
+    status = solve_sdp(prob)
     if status != cp.OPTIMAL:
         return ConditionResult(name, Status.UNDECIDED, detail=(
             f"the SDP solver (Clarabel) returned {status!r}, not 'optimal'; never a certificate."))
@@ -519,11 +525,11 @@ def _dual_certificate(F0m, Fm, F0f, Ff) -> sympy.Matrix | None:
     cons = [Z >> s * np.eye(n), cp.trace(Z) == 1, cp.trace(F0f @ Z) <= -s]
     cons += [cp.trace(f @ Z) == 0 for f in Ff]
     prob = cp.Problem(cp.Maximize(s), cons)
-    if _solve(prob) != cp.OPTIMAL or not s.value > 0:
+    if solve_sdp(prob) != cp.OPTIMAL or not s.value > 0:
         return None
     Zf = np.asarray(Z.value, dtype=float)
     for den in (10**6, 10**9):
-        Zq = _round_matrix(Zf, den)
+        Zq = round_symmetric(Zf, den)
         if Fm:  # project exactly onto {tr(Fᵢ Z) = 0}
             idx = [(i, j) for i in range(n) for j in range(i, n)]
             C = sympy.Matrix([[f[i, j] * (1 if i == j else 2) for (i, j) in idx] for f in Fm])

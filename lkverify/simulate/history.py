@@ -98,7 +98,8 @@ class DenseHistory:
     1.5
     """
 
-    def __init__(self, history, t0: float, y0: np.ndarray, degree: int, piece: float):
+    def __init__(self, history, t0: float, y0: np.ndarray, degree: int, piece: float, *,
+                 converter: str = "auto"):
         self._t0 = float(t0)
         self._y0 = y0
         self._n = n = y0.shape[0]
@@ -118,7 +119,10 @@ class DenseHistory:
         self._C = np.empty((cap, degree + 1, n))
         self._Y = np.empty((cap + 1, n))         # y at the step boundaries (after resync)
         self._Y[0] = y0
-        self._converter = None                   # "dop853" | "rk45" | "generic", chosen on the first step
+        if converter not in ("auto", "generic"):
+            raise InputError(f"converter: expected 'auto' or 'generic', got {converter!r}")
+        # "dop853" | "rk45" (exact coefficient maps) | "generic" (sampling); "auto" chooses on the first step
+        self._converter = None if converter == "auto" else "generic"
         self._fit_u, self._fit_inv = _chebyshev_fit(degree)
 
     # -- properties --------------------------------------------------------
@@ -194,7 +198,14 @@ class DenseHistory:
                 conv = "generic"          # SciPy's private layout changed: fall back to sampling
         return conv
 
-    def _append(self, dense, ta: float, tb: float, y: np.ndarray) -> None:
+    @property
+    def converter(self) -> str | None:
+        """How SciPy's dense output is turned into polynomials: ``"dop853"``, ``"rk45"``, ``"generic"``
+        (``None`` before the first step)."""
+        return self._converter
+
+    def append(self, dense, ta: float, tb: float, y: np.ndarray) -> None:
+        """Store one accepted step ``[ta, tb]``: SciPy's ``dense`` output and the state ``y`` at ``tb``."""
         if self._m == self._mid.shape[0]:
             self._grow()
         m = self._m

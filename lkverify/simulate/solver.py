@@ -426,7 +426,7 @@ class _Integration:
     def accept(self, solver, ta: float, t: float) -> np.ndarray:
         """Store an accepted step, resynchronise, record the monitors; returns the state."""
         past = self.past
-        past._append(solver.dense_output(), ta, t, solver.y)
+        past.append(solver.dense_output(), ta, t, solver.y)
         y = solver.y
         if self.resync is not None:
             y_new = np.asarray(self.resync(t, y, past), dtype=float)

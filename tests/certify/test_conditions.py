@@ -311,7 +311,7 @@ def test_face_enclosures_are_sound_on_random_boxes():
     rng = np.random.default_rng(3)
     with flint.ctx.workprec(64):
         for i in range(3):
-            face = forms._Face(poly, (x, y, z), i, 4)
+            face = forms.CubeFace(poly, (x, y, z), i, 4)
             for _ in range(40):
                 a = np.sort(rng.uniform(-1, 1, size=(2, 2)), axis=0)
                 lo, hi = tuple(a[0]), tuple(a[1])
@@ -409,7 +409,7 @@ def test_check_lyapunov_matrix_exact_solution_is_tight_and_a_larger_q_fails():
 
 @pytest.mark.parametrize("status", ["optimal_inaccurate", "infeasible_inaccurate", "solver error (x)"])
 def test_solver_status_not_optimal_is_never_a_certificate(monkeypatch, status):
-    monkeypatch.setattr(lmi, "_solve", lambda problem: status)
+    monkeypatch.setattr(lmi, "solve_sdp", lambda problem: status)
     for res in (find_lyapunov_matrix([[0, 1], [-2, -3]]), best_quadratic_upper_bound([[2, 1], [1, 2]]),
                 lmi_feasible([[-1, 0], [0, 3]], [[[1, 0], [0, 1]]])):
         assert res.status is Status.UNDECIDED
@@ -423,7 +423,7 @@ def test_rounding_that_breaks_verification_retries_then_undecided(monkeypatch):
         calls.append(den)
         return -sympy.Matrix(X.tolist()).applyfunc(lambda v: sympy.Rational(round(v * 1000), 1000))
 
-    monkeypatch.setattr(lmi, "_round_matrix", broken)
+    monkeypatch.setattr(lmi, "round_symmetric", broken)
     res = find_lyapunov_matrix([[0, 1], [-2, -3]])
     assert res.status is Status.UNDECIDED            # a bad rounding never refutes existence
     assert len(calls) == 3 and "did not verify" in res.detail

@@ -376,16 +376,15 @@ def test_step_polynomials_match_scipy_dense_output(method, degree, converter):
     solver = {"DOP853": DOP853, "RK45": RK45}[method](
         lambda t, y: np.array([y[1], -np.sin(y[0]) - 0.1 * y[1]]), 0.0, np.array([2.0, 0.0]), 100.0,
         rtol=1e-8, max_step=0.5)
-    past = DenseHistory(np.array([2.0, 0.0]), 0.0, np.array([2.0, 0.0]), degree, 1.0)
-    if converter == "generic":
-        past._converter = "generic"
+    past = DenseHistory(np.array([2.0, 0.0]), 0.0, np.array([2.0, 0.0]), degree, 1.0,
+                        converter="generic" if converter == "generic" else "auto")
     denses = []
     while solver.status == "running":
         solver.step()
         denses.append(solver.dense_output())
-        past._append(denses[-1], solver.t_old, solver.t, solver.y)
+        past.append(denses[-1], solver.t_old, solver.t, solver.y)
     assert len(denses) > 128                  # the buffers grew 64 -> 128 -> 256
-    assert past._converter == (method.lower() if converter == "native" else "generic")
+    assert past.converter == (method.lower() if converter == "native" else "generic")
     rng = np.random.default_rng(0)
     for dense in denses[::7]:
         ts = rng.uniform(dense.t_old, dense.t, 9)
