@@ -156,6 +156,9 @@ class Canonicalizer:
         lo, hi = sympy.expand(lo), sympy.expand(hi)
         if lo == hi:  # ∫_a^a = 0 (the upper limit of a double integral gives ∫_t^t)
             return sympy.S.Zero
+        sign = sympy.S.One
+        if sympy.default_sort_key(lo) > sympy.default_sort_key(hi):  # one orientation: ∫_b^a = −∫_a^b
+            lo, hi, sign = hi, lo, -sympy.S.One
         body = sympy.expand(self.atomize(self.normal_expr(inner, extra_times=(var,))))
         total = sympy.S.Zero
         for mono in sympy.Add.make_args(body):
@@ -179,7 +182,7 @@ class Canonicalizer:
             v = sympy.Symbol(f"_v{k}", real=True)
             atom = self._atom_for(sympy.Integral(integrand.xreplace({var: v}), (v, lo, hi)))
             total += sympy.Mul(*outside) * atom
-        return total
+        return sign * total
 
     # -- normal forms ---------------------------------------------------------------------
     def _times(self, symbols: Iterable) -> list:

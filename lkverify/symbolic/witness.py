@@ -164,9 +164,9 @@ def witness_constant(expr, w: Witness):
     expr = _substitute_parameters(expr, w)
     expr = expr.replace(lambda e: isinstance(e, AppliedUndef) and e.func in w.histories,
                         lambda e: w.histories[e.func](*e.args))
-    expr = expr.xreplace({t: w.t_eval})
-    if expr.has(sympy.Derivative, sympy.Subs):
+    if expr.has(sympy.Derivative, sympy.Subs):  # differentiate the histories before t is fixed
         expr = expr.replace(lambda e: isinstance(e, (sympy.Derivative, sympy.Subs)), lambda e: e.doit())
+    expr = expr.xreplace({t: w.t_eval})
     if expr.free_symbols or expr.has(sympy.Integral) or expr.atoms(AppliedUndef):
         return None
     return expr

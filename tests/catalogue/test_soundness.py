@@ -285,3 +285,30 @@ def test_readme_negative_vdot_form_near_singular_is_failed():
     assert bad.status is Status.FAILED
     good = th.run({"a": "2.0000001", "b": "2.00000009", "c": "1.00000009"}).results[0]
     assert good.status is Status.EXACT
+
+
+def test_integral_orientation_and_tiny_integral_terms():
+    # ∫_t^{t−τ} = −∫_{t−τ}^t is one normal form; a residue 10⁻⁹·∫… is refuted (floating point with quadrature)
+    Q, x, system, V, claim, hyp = _readme_theorem()
+    tau = Q["tau"].obj
+    X = x(t)[0]
+    base = [term.expr for term in claim.terms]
+    flipped = sympy.Integral(x(xi)[0] ** 2, (xi, t, t - tau)) + sympy.Integral(x(xi)[0] ** 2, (xi, t - tau, t))
+    tiny = sympy.Rational(1, 10**9) * sympy.Integral(x(xi)[0] ** 2, (xi, t, t - tau))
+    for extra, status in ((flipped, Status.EXACT), (tiny, Status.FAILED), (tiny * X, Status.FAILED)):
+        c = DerivativeClaim("Vdot", V, system, [Term(e) for e in base] + [Term(extra)])
+        assert Theorem("o", system=system, functional=V, claims=[c]).run({}).results[-1].status is status
+
+
+def test_witness_constant_differentiates_histories_before_fixing_t():
+    import numpy as np
+
+    from lkverify.symbolic import make_witness, witness_constant
+
+    x = Vector("x", 1)
+    w = make_witness([x], Parameters(), rng=np.random.default_rng(0))
+    theta = sympy.Symbol("theta")
+    h = w.histories[x.functions[0]]
+    expected = sympy.diff(h(theta) ** 2, theta).subs(theta, w.t_eval)
+    value = witness_constant(sympy.Derivative(x(t)[0] ** 2, t), w)
+    assert abs(float(value - expected)) < 1e-15
