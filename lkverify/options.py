@@ -235,6 +235,17 @@ class Budget:
         """A :class:`Deadline` starting now for :attr:`seconds`."""
         return Deadline(self.seconds)
 
+    @classmethod
+    def of(cls, value) -> "Budget":
+        """A Budget from a Budget, a number of seconds, or ``None`` (no limit).
+
+        >>> Budget.of(5).seconds, Budget.of(None).seconds, Budget.of(Budget(seconds=2)).seconds
+        (5, None, 2)
+        """
+        if isinstance(value, Budget):
+            return value
+        return cls(seconds=value)
+
 
 @dataclasses.dataclass(frozen=True)
 class Accuracy:

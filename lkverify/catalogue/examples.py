@@ -140,13 +140,13 @@ class Example(Item):
         q = np.asarray(along(e.quantity.fn, tr.states, tr.values), dtype=float)
         return cross_check(tr.t, q, np.asarray(e.bound(tr.t, chi), dtype=float), name=e.label)
 
-    def run(self, values: Mapping | None = None, *, budget: Budget | None = None, t_end: float | None = None,
+    def run(self, values: Mapping | None = None, *, budget: Budget | float | None = None, t_end: float | None = None,
             progress: Callable[[str], None] | None = None, envelope: bool = True,
             trajectories: Mapping[str, Trajectory] | None = None) -> Report:
         """Simulate (all runs share ``budget``), summarise every run and check every claim."""
         if trajectories is None:
             trajectories = self.simulate(values, t_end=t_end, progress=progress,
-                                         deadline=budget.deadline() if budget is not None else None)
+                                         deadline=Budget.of(budget).deadline() if budget is not None else None)
         results, cut = self._run_results(trajectories)
         self._claim_results(trajectories, cut, envelope, results)
         failed = [r.name for r in results if r.status is Status.FAILED]

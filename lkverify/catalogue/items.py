@@ -136,9 +136,10 @@ class Theorem(Item):
         InputError
             Unknown parameter names or inadmissible values.
         """
-        from ..options import Deadline
+        from ..options import Budget, Deadline
 
         progress = progress or (lambda msg: None)
+        budget = Budget.of(budget).seconds  # a Budget or seconds
         deadline = Deadline(budget)  # one budget for the whole run: hypotheses and every claim
         P = self.parameters
         given = P.resolve(values or {}, use_defaults=False)

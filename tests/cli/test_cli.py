@@ -143,3 +143,11 @@ def test_theorem2_assumption2_margin_exact_and_refuted(capsys):
     code, out, _ = run(capsys, "check", "aleksandrov2026.theorem2", "--set", "g=1", "--json")
     by = {r["name"]: r for r in json.loads(out)["results"]}
     assert code == 1 and by["beta + int g > 0"]["status"] == "failed"
+
+
+def test_check_a_whole_paper_runs_theorems_and_examples(capsys):
+    # the items of a paper share the --budget keyword: examples took a float budget as a Budget (exit 3)
+    code, out, err = run(capsys, "check", "aleksandrov2026", "--json", "--budget", "120")
+    assert code in (0, 1) and "internal error" not in err
+    doc = json.loads(out)
+    assert {d["item"] for d in doc} >= {"aleksandrov2026.theorem1", "aleksandrov2026.example"}
