@@ -22,6 +22,7 @@ This module re-exports what a proof file needs, so that a proof imports from
 
 from .catalogue.items import Check, Item, Link, Theorem
 from .certify.hypotheses import Hypothesis, MatrixHypothesis
+from .certify.steps import BoundClaim, QuadraticForms
 from .declare.functional import Functional, memory_integral, tail_integral, window_integral
 from .declare.parameters import ParameterKind, Parameters, ParameterSpec
 from .declare.rigidbody import (distance_sum, euler_equation, gyroscopic_term, poisson_equation, poisson_equations,
@@ -44,7 +45,7 @@ from .simulate import (BoundedNotAttractive, Converges, DoesNotConverge, Envelop
                        Sensitive, Series, SmootherThan, StepControl)
 
 __all__ = [
-    "Accuracy", "Block", "Budget", "BudgetExceeded", "Check", "Deadline", "DerivativeClaim", "DerivativeResult",
+    "Accuracy", "Block", "BoundClaim", "Budget", "QuadraticForms", "BudgetExceeded", "Check", "Deadline", "DerivativeClaim", "DerivativeResult",
     "Equation", "Frame", "Functional", "Hypothesis", "IdentityClaim", "IdentityResult", "InputError", "Item",
     "Kind", "Link", "LkverifyError", "MatrixHypothesis", "ParameterKind", "ParameterSpec", "Parameters", "Report",
     "Result", "Status", "System", "Term", "TermDifference", "Theorem", "UnitVector", "UnsupportedInput",

@@ -26,6 +26,7 @@ from collections.abc import Callable, Mapping, Sequence
 
 from ..errors import InputError
 from ..certify.hypotheses import Hypothesis, MatrixHypothesis
+from ..certify.steps import BoundClaim, quadratic_upper_bound
 from ..symbolic.claims import DerivativeClaim, IdentityClaim
 from ..declare.functional import Functional
 from ..declare.parameters import Parameters
@@ -92,11 +93,16 @@ class Theorem(Item):
     """
 
     def __init__(self, name: str, *, system: System, functional: Functional | None = None,
-                 hypotheses: Sequence[Hypothesis] = (), claims: Sequence = (), title: str = "",
-                 unchecked: Sequence[str] = (), paper: str = "", constants=None):
+                 hypotheses: Sequence[Hypothesis] = (), claims: Sequence = (), bounds: Sequence = (),
+                 title: str = "", unchecked: Sequence[str] = (), paper: str = "", constants=None):
         if not name.isidentifier():
             raise InputError(f"item name must be an identifier, got {name!r}")
         problems = []
+        for b in bounds:
+            if not isinstance(b, BoundClaim):
+                problems.append(f"bounds must be BoundClaim objects, got {type(b).__name__}")
+            elif b.system is not system or (functional is not None and b.functional is not functional):
+                problems.append(f"bound step {b.name!r} is not stated for this theorem's own system and functional")
         for c in claims:
             if not isinstance(c, (DerivativeClaim, IdentityClaim)):
                 problems.append(f"claims must be DerivativeClaim or IdentityClaim, got {type(c).__name__}")
@@ -104,7 +110,8 @@ class Theorem(Item):
                 problems.append(f"claim {c.name!r} is stated along the system {c.system.name or c.system!r}, not "
                                 f"along this theorem's system {system.name or system!r}; declare it with the "
                                 f"theorem's own System object")
-        names = [h.name for h in hypotheses] + [c.name for c in claims if hasattr(c, "name")]
+        names = [h.name for h in hypotheses] + [c.name for c in claims if hasattr(c, "name")] \
+            + [b.name for b in bounds if hasattr(b, "name")]
         twice = sorted({n for n in names if names.count(n) > 1})
         if twice:
             problems.append(f"hypotheses and claims need distinct names, got {', '.join(map(repr, twice))} twice")
@@ -115,6 +122,7 @@ class Theorem(Item):
         self.functional = functional
         self.hypotheses = tuple(hypotheses)
         self.claims = tuple(claims)
+        self.bounds = tuple(bounds)
         self.title = title
         self.unchecked = tuple(unchecked)
         self.paper = paper
@@ -166,21 +174,40 @@ class Theorem(Item):
                 _symbols_of(claim), floated_given))
             if res.differences:
                 details.append(res.as_text())
+        definite, upper = {}, None
+        if self.bounds and self.functional is not None:
+            upper = quadratic_upper_bound(self.functional, self.system, everything)
+        for k, step in enumerate(self.bounds):
+            progress(f"{self.qualified_name}: bound step {k + 1}/{len(self.bounds)} {step.name}")
+            res = step.check(everything)
+            results.append(_not_exact_if_floats(res.to_result(), _symbols_of(step), floated_all))
+            if step.role is not None:
+                definite[step.name] = step.positive_definite_bound(everything)
         return Report(self.qualified_name, {k: _show(v) for k, v in everything.items()}, tuple(results),
-                      self._verdict(results), tuple(details), self.chain(results))
+                      self._verdict(results, definite, upper), tuple(details),
+                      self.chain(results, definite=definite, upper=upper))
 
-    def _verdict(self, results) -> str:
-        text = theorem_verdict(self.chain(results))
+    def _verdict(self, results, definite=None, upper=None) -> str:
+        text = theorem_verdict(self.chain(results, definite=definite, upper=upper))
         if self.unchecked and not text.startswith("established"):
             text += "; the proof module lists as not yet checked: " + "; ".join(self.unchecked)
         return text
 
-    def chain(self, results) -> tuple:
+    def chain(self, results, *, definite: Mapping | None = None, upper=None) -> tuple:
         """The links from the functional to the conclusion, each with what was checked of it.
 
         Computed from the results, never from the author's ``unchecked`` list: a link
         holds only when a result of this run proves it (``exact`` or ``certified``)
         along this theorem's own system.
+
+        Parameters
+        ----------
+        results : sequence of Result
+            This run's results (hypotheses, identities, bound steps).
+        definite : mapping, optional
+            Bound-step name → the check that its bound φ / ψ is positive definite.
+        upper : StepResult, optional
+            The check of V ≤ U(‖x_t‖) (:func:`lkverify.certify.steps.quadratic_upper_bound`).
 
         Returns
         -------
@@ -202,10 +229,22 @@ class Theorem(Item):
             sts = [by_name[c.name].status for c in own if c.name in by_name]
             links.append(Link("V̇ along the system", _combined(sts),
                               ", ".join(f"{c.name}: {by_name[c.name].status}" for c in own if c.name in by_name)))
-        links.append(Link("V ≥ φ(‖state‖), φ positive definite", None,
-                          "no bound step of this theorem checks it"))
-        links.append(Link("V̇ ≤ −ψ(‖state‖) on a stated region, ψ positive definite", None,
-                          "no bound step of this theorem checks it"))
+        definite = dict(definite or {})
+        links.append(Link("V ≤ U(‖x_t‖), U continuous, U(0) = 0", None if upper is None else upper.status,
+                          "no bound step of this theorem checks it" if upper is None else upper.detail))
+        for role, text in (("lower", "V ≥ φ(‖state‖), φ positive definite"),
+                           ("decrease", "V̇ ≤ −ψ(‖state‖) on a stated region, ψ positive definite")):
+            steps = [b for b in self.bounds if b.role == role and b.name in by_name]
+            if not steps:
+                links.append(Link(text, None, "no bound step of this theorem checks it"))
+                continue
+            parts = [by_name[b.name].status for b in steps] + [definite[b.name].status for b in steps
+                                                               if b.name in definite]
+            best = _best_step(steps, by_name, definite)
+            links.append(Link(text, _combined(parts) if best is None else best[0], best[1] if best else
+                              "; ".join(f"{b.name}: {by_name[b.name].status}"
+                                        + (f", bound: {definite[b.name].detail}" if b.name in definite else "")
+                                        for b in steps)))
         others = [r for r in results if r.kind == "identity" and r.name not in {c.name for c in own}]
         if others:
             links.append(Link("intermediate identities", _combined([r.status for r in others]),
@@ -214,6 +253,16 @@ class Theorem(Item):
         links.append(Link("conclusion", Status.EXACT if ready else None,
                           "follows from the links above" if ready else "rests on the links above"))
         return tuple(links)
+
+
+def _best_step(steps, by_name, definite):
+    """(status, detail) of the first step of a role whose statement and bound are both proved, else None."""
+    for b in steps:
+        st, bound = by_name[b.name].status, definite.get(b.name)
+        if st.is_proof and bound is not None and bound.status.is_proof:
+            status = Status.EXACT if st is Status.EXACT and bound.status is Status.EXACT else Status.CERTIFIED
+            return status, f"{b.name}: {st}; {bound.detail}"
+    return None
 
 
 def _left(deadline):
@@ -232,6 +281,11 @@ def _symbols_of(statement) -> set:
         exprs.append(sympy.sympify(statement.margin))
     elif isinstance(statement, MatrixHypothesis):
         exprs += list(sympy.Matrix(statement.matrix))
+    elif isinstance(statement, BoundClaim):
+        exprs += [statement.rhs, statement.functional.expr]
+        exprs += [e for eq in statement.system.equations for term in eq.terms for e in [term.expr]]
+        if not isinstance(statement.lhs, str):
+            exprs.append(statement.lhs)
     else:
         terms = list(getattr(statement, "terms", ())) + list(getattr(statement, "lhs", ())) \
             + list(getattr(statement, "rhs", ()))

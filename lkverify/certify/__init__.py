@@ -27,9 +27,10 @@ from .hypotheses import Hypothesis, MatrixHypothesis
 from .intervals import enclose, float_down, float_up, lower_fraction, sign_of, upper_fraction
 from .lmi import best_quadratic_upper_bound, check_lyapunov_matrix, check_quadratic_bound, find_lyapunov_matrix, lmi_feasible
 from .matrices import matrix_positive_definite
+from .steps import BoundClaim, QuadraticForms, StepResult, quadratic_upper_bound
 
 __all__ = [
-    "Affine", "BranchAndBound", "Chart", "CheckResult", "ConditionResult", "ConstantsJob", "ConstantsTuning",
+    "Affine", "BoundClaim", "BranchAndBound", "QuadraticForms", "StepResult", "quadratic_upper_bound", "Chart", "CheckResult", "ConditionResult", "ConstantsJob", "ConstantsTuning",
     "DecayCertificate", "DecayModel", "Enclosure", "Envelope", "Estimate", "Hypothesis", "Margin",
     "MatrixHypothesis", "MeanValue", "MeanValueAffine", "NaturalBalls", "SupResult", "Template", "ball_point",
     "best_constant", "best_quadratic_upper_bound", "certify_decay", "certify_nonpositive", "certify_positive",

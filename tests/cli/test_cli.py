@@ -103,7 +103,13 @@ def test_users_own_proof_file_from_the_readme(tmp_path, capsys):
     assert code == 0, out
     doc = json.loads(out)
     assert doc["item"] == "my_proof.stable"
-    assert [r["status"] for r in doc["results"]] == ["exact", "exact"]
+    assert [r["status"] for r in doc["results"]] == ["exact", "exact", "exact", "exact"]
+    assert doc["verdict"].startswith("established")
+    code, out, _ = run(capsys, "check", str(path), "--set", "a=1", "--set", "b=2", "--json")
+    doc = json.loads(out)
+    assert code == 1 and doc["verdict"].startswith("failed") and "V̇ ≤ −ψ" in doc["verdict"]
+    (step,) = [r for r in doc["results"] if r["name"].startswith("V̇ ≤")]
+    assert step["kind"] == "bound" and step["status"] == "failed" and step["value"]["witness"]
 
 
 def test_users_proof_with_a_wrong_claim_fails(tmp_path, capsys):
