@@ -66,15 +66,7 @@ recognised structurally (sums of squares, ``Abs``, ``sqrt``, even powers,
 ``exp``, products of those) or by SymPy's assumptions (declare
 ``Symbol("x", nonnegative=True)`` or give a box with ``lo ≥ 0``).
 
-Examples
---------
->>> import sympy
->>> x = sympy.Symbol("x")
->>> res = sup_bound(x * sympy.exp(-x), {x: (0, 5)})
->>> res.status
-<Status.CERTIFIED: 'certified'>
->>> res.lower <= float(sympy.exp(-1)) <= res.certified <= 1.01 * res.lower
-True
+The examples are in :mod:`lkverify.certify.suprema` and :mod:`lkverify.certify.ratios`.
 """
 
 from .charts import Chart, ball_point, rotation_axis_angle, unit_vector_angles, unit_vector_near

@@ -22,7 +22,7 @@ from ..errors import InputError
 from .affine import AFFINE_HELPERS
 from .intervals import compile_program, to_ball
 from .intervals.balls import _JUMPS
-from .intervals.convert import _real_dummies
+from .intervals.convert import _real_dummies, _sympify
 
 __all__ = ["ArbFunction", "check_symbols", "compile_arb", "lambdify_real", "sympify_expr"]
 
@@ -126,18 +126,9 @@ def sympify_expr(expr, what: str = "expression") -> sympy.Expr:
     >>> sympify_expr(3)
     3
     """
-    if isinstance(expr, str):
-        raise InputError(f"{what}: expected a SymPy expression, got the string {expr!r}; "
-                         f"build it with sympy (strings are never evaluated)")
     if isinstance(expr, sympy.MatrixBase):
         raise InputError(f"{what}: expected a scalar expression, got a {expr.shape} matrix")
-    try:
-        out = sympy.sympify(expr, strict=True)
-    except (sympy.SympifyError, TypeError) as exc:
-        raise InputError(f"{what}: expected a SymPy expression, got {expr!r}") from exc
-    if not isinstance(out, sympy.Expr):
-        raise InputError(f"{what}: expected a SymPy expression, got {type(out).__name__} {out}")
-    return out
+    return _sympify(expr, what)  # the interval layer's one conversion (floats at their binary value)
 
 
 def compile_arb(expr, variables: Sequence, *, gradient: bool = True,
