@@ -366,15 +366,8 @@ def test_claim_with_float_coefficient_is_never_exact(name, family, i, factor, tr
 # ------------------------------------------------------------------------------------------------------
 
 def _readme_theorem():
-    """The README's "Check your own proof" file."""
-    P = Parameters()
-    a = P.scalar("a", positive=True, default=2)
-    b = P.scalar("b", default=1)
-    c = P.scalar("c", positive=True, default=1)
-    tau = P.delay("tau", default=1)
-    x = Vector("x", 1)
-    system = System([Equation(x, [Term(-a * x(t)[0], text="-a x"),
-                                  Term(b * x(t - tau)[0], text="b x(t-τ)")])], parameters=P)
+    """The README's "Check your own proof" file (the scalar delay system of the mutation families)."""
+    P, a, b, c, tau, x, system = cases._scalar_delay()
     V = Functional([Term(x(t)[0] ** 2 / 2, text="x²/2"),
                     Term(c * window_integral(x(xi)[0] ** 2, tau), text="c∫x²")])
     claim = DerivativeClaim("Vdot", V, system, [
