@@ -27,6 +27,7 @@ from collections.abc import Callable, Mapping, Sequence
 from ..errors import InputError
 from ..certify.hypotheses import Hypothesis, MatrixHypothesis
 from ..certify.steps import BoundClaim, quadratic_upper_bound
+from ..certify.steps.chain import TermwiseBound
 from ..symbolic.claims import DerivativeClaim, IdentityClaim
 from ..declare.functional import Functional
 from ..declare.parameters import Parameters
@@ -90,11 +91,20 @@ class Theorem(Item):
         so that a verdict never claims more than was checked).
     constants : ConstantsJob, optional
         What ``lkverify constants`` computes and certifies for this item.
+    steps : sequence of TermwiseBound
+        The proof's estimates V ≥ L, V ≤ U, V̇ ≤ W (roles ``lower``, ``upper``, ``vdot``),
+        each proved term by term (:mod:`lkverify.certify.steps.chain`).
+    decay : Decay, optional
+        The last link: the certified decay of the checked L, U, W on the region.
+    choices : mapping
+        Values of the proof's free parameters (λ, α, β, the region) used when the user
+        does not set them (``--set lam=…``); they appear in the report's parameters.
     """
 
     def __init__(self, name: str, *, system: System, functional: Functional | None = None,
                  hypotheses: Sequence[Hypothesis] = (), claims: Sequence = (), bounds: Sequence = (),
-                 title: str = "", unchecked: Sequence[str] = (), paper: str = "", constants=None):
+                 title: str = "", unchecked: Sequence[str] = (), paper: str = "", constants=None,
+                 steps: Sequence = (), decay=None, choices: Mapping | None = None):
         if not name.isidentifier():
             raise InputError(f"item name must be an identifier, got {name!r}")
         problems = []
@@ -127,6 +137,9 @@ class Theorem(Item):
         self.unchecked = tuple(unchecked)
         self.paper = paper
         self.constants = constants
+        self.steps = tuple(steps)
+        self.decay = decay
+        self.choices = dict(choices or {})
 
     @property
     def parameters(self) -> Parameters:
@@ -183,17 +196,39 @@ class Theorem(Item):
             results.append(_not_exact_if_floats(res.to_result(), _symbols_of(step), floated_all))
             if step.role is not None:
                 definite[step.name] = step.positive_definite_bound(everything)
+        checked = {}
+        if self.steps:
+            everything = P.resolve({**self.choices, **dict(values or {})}, use_defaults=True)
+            floated_all = P.float_symbols(everything)
+        for k, step in enumerate(self.steps):
+            progress(f"{self.qualified_name}: bound step {k + 1}/{len(self.steps)} {step.name}")
+            if deadline.expired:
+                results.append(Result("bound", step.name, Status.UNDECIDED, None,
+                                      f"not checked: the time budget of {budget:g} s was spent before this step"))
+                continue
+            res = step.check(everything, budget=_left(deadline))
+            results += [_not_exact_if_floats(r, _symbols_of(step), floated_all) for r in res.results()]
+            checked[step.role] = (step, res)
+        decay = None
+        if self.decay is not None and all(r in checked and checked[r][1].status.is_proof
+                                          for r in ("lower", "upper", "vdot")):
+            progress(f"{self.qualified_name}: the decay on the region")
+            rows, status, detail = self.decay.certify(checked, everything, budget=_left(deadline),
+                                                      progress=progress)
+            results += rows
+            decay = Link("decay on the region (V̇ ≤ −c̃V^p, envelope)", status, detail)
         return Report(self.qualified_name, {k: _show(v) for k, v in everything.items()}, tuple(results),
-                      self._verdict(results, definite, upper), tuple(details),
-                      self.chain(results, definite=definite, upper=upper))
+                      self._verdict(results, definite, upper, checked, decay), tuple(details),
+                      self.chain(results, definite=definite, upper=upper, steps=checked, decay=decay))
 
-    def _verdict(self, results, definite=None, upper=None) -> str:
-        text = theorem_verdict(self.chain(results, definite=definite, upper=upper))
+    def _verdict(self, results, definite=None, upper=None, steps=None, decay=None) -> str:
+        text = theorem_verdict(self.chain(results, definite=definite, upper=upper, steps=steps, decay=decay))
         if self.unchecked and not text.startswith("established"):
             text += "; the proof module lists as not yet checked: " + "; ".join(self.unchecked)
         return text
 
-    def chain(self, results, *, definite: Mapping | None = None, upper=None) -> tuple:
+    def chain(self, results, *, definite: Mapping | None = None, upper=None, steps: Mapping | None = None,
+              decay: "Link | None" = None) -> tuple:
         """The links from the functional to the conclusion, each with what was checked of it.
 
         Computed from the results, never from the author's ``unchecked`` list: a link
@@ -208,6 +243,10 @@ class Theorem(Item):
             Bound-step name → the check that its bound φ / ψ is positive definite.
         upper : StepResult, optional
             The check of V ≤ U(‖x_t‖) (:func:`lkverify.certify.steps.quadratic_upper_bound`).
+        steps : mapping, optional
+            Role → (TermwiseBound, ChainResult) of the checked estimates V ≥ L, V ≤ U, V̇ ≤ W.
+        decay : Link, optional
+            The certified decay of the checked estimates (:class:`~lkverify.certify.steps.chain.Decay`).
 
         Returns
         -------
@@ -230,6 +269,29 @@ class Theorem(Item):
             links.append(Link("V̇ along the system", _combined(sts),
                               ", ".join(f"{c.name}: {by_name[c.name].status}" for c in own if c.name in by_name)))
         definite = dict(definite or {})
+        if self.steps:
+            steps = dict(steps or {})
+            for role, text in (("lower", "V ≥ L (bound step, term by term)"), ("upper", "V ≤ U (bound step, term by term)"),
+                               ("vdot", "V̇ ≤ W on the region (bound step, term by term)")):
+                if role not in steps:
+                    links.append(Link(text, None, "no bound step of this theorem states it"))
+                else:
+                    step, res = steps[role]
+                    links.append(Link(text, res.status, f"{step.name}: {res.detail}"))
+            if self.decay is None:
+                links.append(Link("decay on the region", None, "the theorem declares no decay link"))
+            elif decay is None:
+                links.append(Link("decay on the region", None, "not attempted: a bound step is not proved"))
+            else:
+                links.append(decay)
+            others = [r for r in results if r.kind == "identity" and r.name not in {c.name for c in own}]
+            if others:
+                links.append(Link("intermediate identities", _combined([r.status for r in others]),
+                                  ", ".join(f"{r.name}: {r.status}" for r in others)))
+            ready = all(link.status is not None and link.status.is_proof for link in links)
+            links.append(Link("conclusion", Status.EXACT if ready else None,
+                              "follows from the links above" if ready else "rests on the links above"))
+            return tuple(links)
         links.append(Link("V ≤ U(‖x_t‖), U continuous, U(0) = 0", None if upper is None else upper.status,
                           "no bound step of this theorem checks it" if upper is None else upper.detail))
         for role, text in (("lower", "V ≥ φ(‖state‖), φ positive definite"),
@@ -281,6 +343,11 @@ def _symbols_of(statement) -> set:
         exprs.append(sympy.sympify(statement.margin))
     elif isinstance(statement, MatrixHypothesis):
         exprs += list(sympy.Matrix(statement.matrix))
+    elif isinstance(statement, TermwiseBound):
+        exprs += [statement.rhs, statement.functional.expr] + [tb.bound for tb in statement.bounds]
+        exprs += [e for eq in statement.system.equations for term in eq.terms for e in [term.expr]]
+        if statement.region is not None:
+            exprs += list(statement.region.bounds.values())
     elif isinstance(statement, BoundClaim):
         exprs += [statement.rhs, statement.functional.expr]
         exprs += [e for eq in statement.system.equations for term in eq.terms for e in [term.expr]]

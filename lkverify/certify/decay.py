@@ -55,7 +55,7 @@ from .intervals import enclose, float_down, float_up
 from .matrices import matrix_positive_definite
 
 __all__ = ["C0_REL_GAP", "CERTIFY_SECONDS", "DecayCertificate", "DecayModel", "Envelope", "ESTIMATE_GRID",
-           "INFEASIBLE_SCORE", "SEARCH_GRID", "SEARCH_MAXITER", "SEARCH_POPSIZE", "certify_decay", "estimate_decay", "search_parameters", "tighten"]
+           "INFEASIBLE_SCORE", "SEARCH_GRID", "SEARCH_MAXITER", "SEARCH_POPSIZE", "certify_decay", "certify_model", "estimate_decay", "search_parameters", "tighten"]
 
 #: default time budget of one :func:`certify_decay` (seconds, shared by its interval checks)
 CERTIFY_SECONDS = 60.0
@@ -393,6 +393,43 @@ def _constants_and_envelopes(model: DecayModel, ct, ls: Mapping, dt, C0: arb) ->
     for out, lv in ls.items():
         constants[f"l_{out}"] = float_down(lv)
     return constants, envelopes
+
+
+def certify_model(model: DecayModel, *, budget: Budget | float | None = Budget(seconds=CERTIFY_SECONDS),
+                  attempts: int = 6, margin=sympy.Rational(99, 100), shrink=sympy.Rational(9, 10),
+                  progress: Callable[[str], None] | None = None) -> DecayCertificate | None:
+    """Estimate the constants of a numeric model, then certify them (lowered after each failed attempt).
+
+    None when the estimator finds no admissible constants (V̇ ≥ 0 sampled somewhere on the
+    region, or the model is not of the shape the scaling argument covers).  The
+    candidates are lowered below refuted points (:func:`tighten`) or by ``shrink``.
+    """
+    say = progress or (lambda msg: None)
+    deadline = Budget.of(budget).deadline()
+    est = estimate_decay(model)
+    if est is None:
+        return None
+    ct = sympy.Rational(est["c_tilde"]).limit_denominator(10**6) * margin
+    ls = {v: sympy.Rational(est[f"l_{v}"]).limit_denominator(10**6) * margin for v in model.outputs.values()}
+    dt = sympy.Rational(est["delta_tilde"]).limit_denominator(10**6)
+    cert = None
+    for attempt in range(attempts):
+        left = deadline.remaining
+        if left is not None and left <= 0:
+            break
+        say(f"certifying the decay model (attempt {attempt + 1}, c̃ = {float(ct):.5g})")
+        cert = certify_decay(model, c_tilde=ct, lower_coefficients=ls, delta_tilde=dt,
+                             budget=Budget(seconds=left if left is not None else CERTIFY_SECONDS), progress=say)
+        if cert.status is Status.CERTIFIED:
+            break
+        if cert.counterexamples:
+            tightened = tighten(model, ct, ls, cert.counterexamples)
+            if tightened is None:
+                break
+            ct, ls = tightened
+        else:
+            ct, ls = ct * shrink, {k: v * shrink for k, v in ls.items()}
+    return cert
 
 
 def tighten(model: DecayModel, c_tilde, lower_coefficients: Mapping, counterexamples, *, factor=sympy.Rational(98, 100)):

@@ -12,7 +12,7 @@ r = (1,1,1)/√3, F = h·I with h = 1, a = 0, b = −1, τ = 1, μ = 2.
 from lkverify import Parameters, System, Term, UnitVector, Vector, cross, norm_power, t, window_integral, xi
 from lkverify.declare.rigidbody import euler_equation, poisson_equation
 
-__all__ = ["PAPER", "P", "Theta", "F", "a", "b", "tau", "mu", "r", "lam", "alpha", "beta", "omega", "s", "n", "F_inv",
+__all__ = ["PAPER", "P", "Theta", "F", "a", "b", "tau", "mu", "r", "lam", "alpha", "beta", "delta_e", "delta_w", "omega", "s", "n", "F_inv",
            "system", "J", "K"]
 
 PAPER = "aleksandrov2023"
@@ -30,6 +30,9 @@ r = P.unit_vector("r", default="[1/sqrt(3), 1/sqrt(3), 1/sqrt(3)]", description=
 lam = P.scalar("lam", positive=True, latex=r"\lambda")
 alpha = P.scalar("alpha", positive=True, latex=r"\alpha")
 beta = P.scalar("beta", positive=True, latex=r"\beta")
+# the region of the proof's estimates: max_{[t−τ,t]} ‖s(ξ) − r‖ ≤ δ_e, ‖ω(t)‖ ≤ δ_w (free, chosen by the proof)
+delta_e = P.scalar("delta_e", positive=True, latex=r"\delta_e", description="region: max over the window of ‖s − r‖")
+delta_w = P.scalar("delta_w", positive=True, latex=r"\delta_\omega", description="region: ‖ω(t)‖")
 
 omega = Vector("omega", latex=r"\omega", text="ω")
 s = UnitVector("s")

@@ -17,9 +17,10 @@ from lkverify import (DerivativeClaim, Functional, Hypothesis, Term, Theorem, cr
                       quad, t, window_integral, xi)
 
 from .equations import PAPER, F, F_inv, J, K, Theta, a, alpha, b, beta, lam, mu, n, omega, r, s, system, tau
+from .theorem3_chain import CHOICES, DECAY, chain_steps
 from .theorem3_constants import THEOREM3_CONSTANTS
 
-__all__ = ["functional", "structured_Vdot", "theorem3"]
+__all__ = ["derivation", "functional", "steps", "structured_Vdot", "theorem3"]
 
 # The functional of the proof of Theorem 3
 functional = Functional([
@@ -58,6 +59,14 @@ structured_Vdot = [
          latex=r"-\beta\int_{t-\tau}^t\|s(\xi)-r\|^{\mu+1}d\xi"),
 ]
 
+#: V̇ along (10), (12) in the structured form (exact; the terms the bound steps bound)
+derivation = DerivativeClaim("Vdot_structured", functional, system, structured_Vdot,
+                             description="V̇ along (10),(12) equals the structured form with "
+                                         "−(a−τb)‖s−r‖^{μ−1}(s×r)ᵀF⁻¹(s×r)")
+
+#: the proof's estimates V ≥ L, V ≤ U, V̇ ≤ W, term by term (:mod:`.theorem3_chain`)
+steps = chain_steps(functional, derivation)
+
 theorem3 = Theorem(
     "theorem3",
     title="Theorem 3: monoaxial stabilization with a distributed-delay torque, μ > 1 and bτ < a",
@@ -67,9 +76,10 @@ theorem3 = Theorem(
         Hypothesis("mu > 1", mu - 1, reference="(Theorem 3)"),
         Hypothesis("b*tau < a", a - b * tau, reference="(14)"),
     ],
-    claims=[DerivativeClaim("Vdot_structured", functional, system, structured_Vdot,
-                            description="V̇ along (10),(12) equals the structured form with −(a−τb)‖s−r‖^{μ−1}(s×r)ᵀF⁻¹(s×r)")],
-    unchecked=["the bounds on V and V̇ with c1…c9 and the region δ (Young's inequality)"],
+    claims=[derivation],
+    steps=steps,
+    decay=DECAY,
+    choices=CHOICES,
     constants=THEOREM3_CONSTANTS,
     paper=PAPER,
 )

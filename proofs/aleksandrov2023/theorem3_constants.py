@@ -1,116 +1,71 @@
 """The constants of the proof of Theorem 3 of paper 002 for μ = 2 (the case of estimate (15)).
 
-Derivation of the final inequalities (each step is a standard inequality; the exact V̇ is the
-claim ``Vdot_structured`` of :mod:`.theorem3`, proved exact).  Scalar quantities at time t:
-
-    w = ‖ω(t)‖,  e = ‖s(t) − r‖,  j = (∫_{t−τ}^t ‖s(ξ) − r‖³ dξ)^{1/3},  q = s × r,
-
-on the region max_{[t−τ,t]} ‖s(ξ) − r‖ ≤ δ_e, w ≤ δ_w (so e ≤ δ_e, j ≤ τ^{1/3} δ_e):
-
-    ‖q‖² = e²(1 − e²/4) for unit s, r;  ‖q‖ ≤ e;  ‖(ω×s)×r‖ ≤ w;
-    ‖J‖ = ‖∫ ‖s(ξ)−r‖ s(ξ)×r dξ‖ ≤ ∫ e² ≤ τ^{1/3} j²  (Hölder);
-    ‖K‖ = ‖∫ (ξ+τ−t) ‖s(ξ)−r‖ s(ξ)×r dξ‖ ≤ (τ⁴/4)^{1/3} j²  (Hölder);
-    κ1 = sup |qᵀF⁻¹Θω|/(e w),  c_A = sup −((ω×s)×r)ᵀF⁻¹Θω / w²,  c_B = sup |qᵀF⁻¹(ω×Θω)|/(e w²)
-
-over the cap ‖s − r‖ ≤ 2 sin(1/4) and ω ≠ 0 (certified: the templates below, on the chart
-:func:`lkverify.certify.bounds.unit_vector_near`).  Then, with θ_min, θ_max the eigenvalues of
-Θ, φ_min = λ_min(F), ψ_min = λ_min(F⁻¹):
-
-    V ≥ L = ½λθ_min w² + ½e² − κ1 e w − |b|‖F⁻¹‖k_τ e j² + α j³,
-    V ≤ U = ½λθ_max w² + ½e² + κ1 e w + |b|‖F⁻¹‖k_τ e j² + (α + βτ) j³,
-    V̇ ≤ W = −(λφ_min − c_A) w² + c_B e w² + λa e² w + (λ|b|τ^{1/3} + |b|‖F⁻¹‖k_τ) w j²
-            − (a − τb)ψ_min e³(1 − e²/4) + (α + βτ) e³ − β j³      (using (14): a − τb > 0),
-
-dropping −α‖s(t−τ) − r‖³ ≤ 0.  At t0: w² + e² ≤ ‖χ‖_τ², j ≤ τ^{1/3}‖χ‖_τ.
+The final inequalities L ≤ V ≤ U, V̇ ≤ W are not typed here: they are the right-hand
+sides of the bound steps of :mod:`.theorem3_chain`, checked term by term against the
+functional and the exact V̇ (every rule application matched, its side conditions
+decided, the template constants κ1, c_A, c_B certified over the cap).  The job checks
+the steps once with λ, α, β symbolic (so they hold for all positive values) on the
+largest region of the search (δ_e, δ_w at the top of their ranges: a step proved on a
+region holds on every smaller one), then searches λ, α, β, δ_e, δ_w for the best
+certified estimate (15) (:mod:`lkverify.certify.decay`).
 """
 
 import numpy as np
 import sympy
 
 from lkverify import Result, Status
-from lkverify.certify.bounds import unit_vector_angles, unit_vector_near
-from lkverify.certify.constants import ConstantsJob, Template
-from lkverify.certify.decay import DecayModel
+from lkverify.certify.constants import ConstantsJob
 from lkverify.simulate import cross_check, simulate
 from lkverify.simulate.rigidbody import chi_norm
 
 from .equations import system
 from .section6 import FIG7_HISTORY, PRINTED_15
+from .theorem3_chain import DECAY, MEASURES, REGION, RHO_CAP
 
-__all__ = ["THEOREM3_CONSTANTS", "RHO_CAP", "cap_chart", "theorem3_model"]
+__all__ = ["THEOREM3_CONSTANTS", "FREE", "theorem3_model"]
 
-RHO_CAP = sympy.Rational(1, 2)  # the cap ‖s − r‖ ≤ 2 sin(1/4) ≈ 0.4948 contains every region searched
-_rho, _psi, _th, _ph = sympy.symbols("rho psi theta phi", real=True)
-_w, _e, _j = sympy.symbols("w e j", nonnegative=True)
-_OMEGA = unit_vector_angles(_th, _ph)  # the direction of ω ≠ 0
-
-
-def cap_chart(v):
-    """s on the cap around r (angle ρ ≤ RHO_CAP, azimuth ψ): the chart of lkverify.certify.bounds."""
-    return unit_vector_near(v["r"], rho_max=RHO_CAP, rho=_rho, psi=_psi)
+#: the search ranges of the proof's free parameters (the region stays inside the cap of the templates)
+FREE = {"lam": (5.0, 40.0), "alpha": (0.001, 0.9), "beta": (0.001, 0.99), "delta_e": (0.005, 0.45),
+        "delta_w": (0.005, 1.0)}
 
 
-def _chart(v):
-    """r, s on the cap, a unit ω (θ, φ), and q/e = cos(ρ/2) n×r with n = (s − cos ρ r)/sin ρ."""
-    cap = cap_chart(v)
-    rv = sympy.Matrix(v["r"])
-    n = sympy.cos(_psi) * cap.extras["e1"] + sympy.sin(_psi) * cap.extras["e2"]
-    return rv, cap.value, _OMEGA.value, sympy.cos(_rho / 2) * n.cross(rv)
+def theorem3_model(v, c, *, budget=None, progress=None):
+    """Check the chain of :mod:`.theorem3_chain` on the largest searched region; ``build(free)`` → DecayModel.
 
+    Returns ``(build, results)``; ``build`` is None when a step is not proved.
+    """
+    from .theorem3 import steps
 
-def _box(v):
-    """The cap's (ρ, ψ) and the sphere's (θ, φ)."""
-    return {**cap_chart(v).region, **_OMEGA.region}
-
-
-def _box_even(v):
-    """For templates even in ω (quadratic forms): ω and −ω give one value, the upper hemisphere suffices."""
-    return {**_box(v), _th: (0, sympy.pi / 2)}
-
-
-def _kappa1(v):
-    rv, s_, om, qe = _chart(v)
-    return (qe.T * v["F"].inv() * v["Theta"] * om)[0]  # ω → −ω makes the sign irrelevant
-
-
-def _cA(v):
-    rv, s_, om, qe = _chart(v)
-    return -(om.cross(s_).cross(rv).T * v["F"].inv() * v["Theta"] * om)[0]
-
-
-def _cB(v):
-    rv, s_, om, qe = _chart(v)
-    return (qe.T * v["F"].inv() * om.cross(v["Theta"] * om))[0]  # ψ → ψ + π flips q
-
-
-def _eig(M):
-    ev = [sympy.nsimplify(x) for x in sympy.Matrix(M).eigenvals(multiple=True)]
-    return min(ev), max(ev)
-
-
-def theorem3_model(v, c):
-    """The final inequalities L ≤ V ≤ U, V̇ ≤ W above, with the certified κ1, c_A, c_B (``c``)."""
-    th_min, th_max = _eig(v["Theta"])
-    f_min, f_max = _eig(v["F"])
-    a_, b_, tau_ = v["a"], v["b"], v["tau"]
-    k_tau = (tau_**4 / 4) ** sympy.Rational(1, 3)
-    Finv_norm, psi_min = 1 / f_min, 1 / f_max
-    k1, cA_, cB_ = (sympy.Rational(c[n]).limit_denominator(10**9) + sympy.Rational(1, 10**9)
-                    for n in ("kappa1", "c_A", "c_B"))
+    top = {k: sympy.Rational(hi).limit_denominator(1000) for k, (lo, hi) in FREE.items() if k.startswith("delta")}
+    values = {**v, **top}
+    rows, checked = [], {}
+    for step in steps:
+        if progress:
+            progress(f"bound step {step.name} (λ, α, β symbolic; region δ_e ≤ {top['delta_e']}, δ_w ≤ {top['delta_w']})")
+        res = step.check(values, budget=budget)
+        rows += res.results()
+        checked[step.role] = (step, res)
+    if not all(res.status.is_proof for _, res in checked.values()):
+        return None, rows
+    P = system.parameters
 
     def build(free):
-        lam_, al, be, de, dw = (sympy.nsimplify(free[n]) for n in ("lam", "alpha", "beta", "delta_e", "delta_w"))
-        m = lam_ * abs(b_) * tau_ ** sympy.Rational(1, 3) + abs(b_) * Finv_norm * k_tau
-        cross = abs(b_) * Finv_norm * k_tau * _e * _j**2
-        L = lam_ * th_min / 2 * _w**2 + _e**2 / 2 - k1 * _e * _w - cross + al * _j**3
-        U = lam_ * th_max / 2 * _w**2 + _e**2 / 2 + k1 * _e * _w + cross + (al + be * tau_) * _j**3
-        W = (-(lam_ * f_min - cA_) * _w**2 + cB_ * _e * _w**2 + lam_ * a_ * _e**2 * _w + m * _w * _j**2
-             - (a_ - tau_ * b_) * psi_min * _e**3 * (1 - _e**2 / 4) + (al + be * tau_) * _e**3 - be * _j**3)
-        return DecayModel("Theorem 3, μ = 2", (_w, _e, _j), {_w: dw, _e: de, _j: tau_ ** sympy.Rational(1, 3) * de},
-                          L, U, W, sympy.Rational(3, 2), (_w, _e), {_j: tau_ ** sympy.Rational(1, 3)},
-                          {"d1": _e, "d2": _w}, "d3")
+        chosen = {**v, **{k: sympy.nsimplify(x) for k, x in free.items()}}
+        sub = P.substitution(chosen)
+        at = {role: (step, _At(res, sub)) for role, (step, res) in checked.items()}
+        return DECAY.model(at, chosen)
 
-    return build
+    return build, rows
+
+
+class _At:
+    """A checked step's result with the free parameters substituted in its right-hand side."""
+
+    def __init__(self, res, sub):
+        from lkverify.declare.parameters import apply_substitution
+
+        self.rhs = sympy.expand(apply_substitution(res.rhs, sub))
+        self.status = res.status
 
 
 def _applies(v):
@@ -215,21 +170,13 @@ def _cross_check(v, cert, *, samples=8, t_end=300.0, seed=11):
 
 
 THEOREM3_CONSTANTS = ConstantsJob(
-    templates=[
-        Template("kappa1", "|(s×r)ᵀF⁻¹Θω| / (‖s−r‖‖ω‖) on the cap", _kappa1, _box),
-        Template("c_A", "−((ω×s)×r)ᵀF⁻¹Θω / ‖ω‖² on the cap", _cA, _box_even),
-        Template("c_B", "|(s×r)ᵀF⁻¹(ω×Θω)| / (‖s−r‖‖ω‖²) on the cap", _cB, _box_even),
-    ],
+    templates=[],
     model=theorem3_model,
-    free={"lam": (5.0, 40.0), "alpha": (0.001, 0.9), "beta": (0.001, 0.99), "delta_e": (0.005, 0.45),
-          "delta_w": (0.005, 1.0)},
+    steps=True,
+    free=FREE,
     objective={"paper": _objective_paper, "region": _objective_region},
     paper=PRINTED_15,
     applies=_applies,
     cross_check=_cross_check,
-    descriptions={"d1": "‖s(t)−r‖ ≤ d1‖χ‖_τ(1 + d3‖χ‖_τ(t−t0))^{−1}:",
-                  "d2": "‖ω(t)‖ ≤ d2‖χ‖_τ(1 + d3‖χ‖_τ(t−t0))^{−1}:",
-                  "d3": "the rate in (15):", "delta_tilde": "valid for ‖χ‖_τ < δ̃:",
-                  "C0": "V(t0) ≤ C0‖χ‖_τ²", "c_tilde": "V̇ ≤ −c̃V^{3/2} on the region",
-                  "l_e": "V ≥ l_e‖s−r‖²", "l_w": "V ≥ l_w‖ω‖²"},
+    descriptions=DECAY.descriptions,
 )

@@ -46,14 +46,14 @@ from collections.abc import Mapping
 import sympy
 from sympy.core.function import AppliedUndef
 
-from ..declare.functional import Functional, split_outer
-from ..declare.parameters import apply_substitution
-from ..declare.symbols import t
-from ..declare.system import System
-from ..errors import InputError
-from ..report.results import Kind, Result
-from ..status import Status
-from .matrices import matrix_positive_definite
+from ...declare.functional import Functional, split_outer
+from ...declare.parameters import apply_substitution
+from ...declare.symbols import t
+from ...declare.system import System
+from ...errors import InputError
+from ...report.results import Kind, Result
+from ...status import Status
+from ..matrices import matrix_positive_definite
 
 __all__ = ["BoundClaim", "QuadraticForms", "StepResult", "quadratic_upper_bound"]
 
@@ -163,7 +163,7 @@ class BoundClaim:
             if self.lhs == "V":
                 return self.functional.expr
             if self.lhs == "Vdot":
-                from ..symbolic.derivative import derivative_along
+                from ...symbolic.derivative import derivative_along
 
                 return derivative_along(self.functional, self.system).expr
             raise InputError(f"bound step {self.name}: lhs: expected 'V', 'Vdot' or an expression, got {self.lhs!r}")

@@ -1,0 +1,20 @@
+"""Bound steps: the inequality chain of a proof, refuted by witnesses or proved by checked rules.
+
+* :mod:`.quadratic` — :class:`BoundClaim` for unconstrained states, decided exactly by
+  the rule :class:`QuadraticForms` (PSD forms plus nonnegative window integrals).
+* :mod:`.measures` — the scalar measures a bound is written in (‖s(t) − r‖, window
+  norms (∫‖·‖^p)^{1/p}, window integrals of norm powers, sups over the window) and the
+  region that bounds them.
+* :mod:`.rules` — the checked rules a proof names (triangle, Cauchy–Schwarz with an
+  operator norm, ‖a × b‖ ≤ ‖a‖‖b‖, unit-vector identities, Young, Hölder on a window,
+  a bound on a weight, a template constant over a chart).
+* :mod:`.witnesses` — adversarial witnesses: states with piecewise-constant histories,
+  pushed by local optimisation, rechecked in interval arithmetic.
+* :mod:`.chain` — :class:`TermwiseBound`: ``lhs ≤ rhs`` with lhs a sum of labelled terms
+  of V or of the exact V̇, each term bounded by a rule, the bounds summed and compared
+  with rhs on the region.
+"""
+
+from .quadratic import BoundClaim, QuadraticForms, StepResult, quadratic_upper_bound
+
+__all__ = ["BoundClaim", "QuadraticForms", "StepResult", "quadratic_upper_bound"]

@@ -1,0 +1,424 @@
+"""Term-by-term bound steps: ``lhs ≤ rhs`` with lhs a sum of labelled terms of V or of the exact V̇.
+
+A :class:`TermwiseBound` takes its left-hand side from the model — the terms of the
+functional (``lhs="V"``) or the terms of a structured V̇ that a
+:class:`~lkverify.DerivativeClaim` proves equal to the exact derivative (``lhs="Vdot"``)
+— never retyped.  Each term (or group of terms) gets a :class:`TermBound`: the stated
+bound in measures and constants, and the rule that justifies it
+(:mod:`lkverify.certify.steps.rules`).  The check:
+
+1. every lhs term is covered exactly once;
+2. each rule application is matched against its term and its side conditions decided;
+   the stated bound must be the rule's or weaker by a structurally nonnegative
+   remainder; a template constant is the certified supremum (its value replaces the
+   constant's name in the bounds);
+3. a term bound that is not proved is searched for an adversarial witness
+   (:func:`lkverify.certify.steps.witnesses.search_witness`): found and rechecked in
+   interval arithmetic → ``failed`` with the witness; otherwise ``undecided`` with the
+   failing side condition;
+4. the bounds add up to rhs: rhs − Σ bounds (upper) is 0 or structurally ≥ 0 on the
+   region.
+
+The step is as strong as its weakest term: ``exact`` when every application is exact,
+``certified`` when some rests on interval arithmetic, else ``failed`` / ``undecided``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time as _time
+from collections.abc import Mapping, Sequence
+
+import sympy
+
+from ...errors import InputError
+from ...report.results import Kind, Result
+from ...status import Status
+from .measures import Measure, Region
+from .rules import Application, Context, Rule, Young, nonnegative
+
+__all__ = ["ChainResult", "Decay", "TermBound", "TermResult", "TermwiseBound"]
+
+_WEAKEST = (Status.FAILED, Status.UNDECIDED, Status.SIMULATED, Status.ESTIMATED, Status.CERTIFIED)
+
+
+def _put(expr, constants: Mapping):
+    """``expr`` with the symbols named like certified constants replaced by their (rational) values."""
+    expr = sympy.sympify(expr)
+    rep = {s_: sympy.Rational(constants[s_.name]) for s_ in expr.free_symbols if s_.name in constants}
+    return expr.xreplace(rep)
+
+
+def _weakest(statuses) -> Status:
+    statuses = list(statuses)
+    for s in _WEAKEST:
+        if s in statuses:
+            return s
+    return Status.EXACT
+
+
+@dataclasses.dataclass(frozen=True)
+class TermBound:
+    """One term (or group of terms) of lhs, its stated bound and the rule that justifies it.
+
+    Parameters
+    ----------
+    terms : str or tuple of str
+        Labels (``Term.text``) of the lhs terms bounded together.
+    bound : sympy expression
+        In measures, parameters and the step's constants.
+    rule : Rule
+    then : tuple of Young
+        Rewrites applied to the rule's bound, in order (e.g. Young's inequality).
+    """
+
+    terms: object
+    bound: object
+    rule: Rule
+    then: tuple = ()
+
+    def __post_init__(self):
+        labels = (self.terms,) if isinstance(self.terms, str) else tuple(self.terms)
+        object.__setattr__(self, "terms", labels)
+        object.__setattr__(self, "bound", sympy.sympify(self.bound))
+        if not isinstance(self.rule, Rule):
+            raise InputError(f"term bound {labels}: rule: expected a rule of lkverify.certify.steps.rules, got "
+                             f"{type(self.rule).__name__}")
+        object.__setattr__(self, "then", tuple(self.then))
+
+
+@dataclasses.dataclass(frozen=True)
+class TermResult:
+    """The check of one term bound."""
+
+    terms: tuple
+    statement: str
+    status: Status
+    detail: str
+    rule: str
+    applications: tuple = ()
+    witness: object = None
+    bound: object = None
+
+    def to_json(self) -> dict:
+        return {"terms": list(self.terms), "statement": self.statement, "status": self.status.value,
+                "detail": self.detail, "rule": self.rule,
+                "applications": [a.to_json() for a in self.applications],
+                "witness": None if self.witness is None else self.witness.to_json()}
+
+
+@dataclasses.dataclass(frozen=True)
+class ChainResult:
+    """The check of a :class:`TermwiseBound`: per term, the sum, and the constants certified."""
+
+    name: str
+    status: Status
+    detail: str
+    terms: tuple
+    constants: Mapping
+    rhs: object = None
+    seconds: float = 0.0
+
+    @property
+    def rule(self) -> str:
+        return "term by term"
+
+    def results(self) -> list[Result]:
+        """Report rows of kind ``bound``: one per term, then the step."""
+        rows = []
+        for tr in self.terms:
+            rows.append(Result(Kind.BOUND, f"{self.name}: {tr.statement}", tr.status,
+                               {"rule": tr.rule, "witness": None if tr.witness is None else tr.witness.to_json(),
+                                "applications": [a.to_json() for a in tr.applications]}, tr.detail))
+        rows.append(self.to_result())
+        return rows
+
+    def to_result(self) -> Result:
+        return Result(Kind.BOUND, self.name, self.status,
+                      {"rule": self.rule, "rhs": str(self.rhs), "constants": {k: float(v) for k, v in
+                                                                              self.constants.items()},
+                       "terms": [t.to_json() for t in self.terms], "seconds": self.seconds}, self.detail)
+
+
+@dataclasses.dataclass(frozen=True)
+class TermwiseBound:
+    """``lhs ≤ rhs`` (or ``≥``) proved term by term on a region.
+
+    Parameters
+    ----------
+    name : str
+    functional : Functional
+    system : System
+    lhs : {"V", "Vdot"}
+    bounds : sequence of TermBound
+    rhs : sympy expression
+        In the measures' symbols, parameters and the constants of Template rules.
+    measures : sequence of Measure
+    relation : {"<=", ">="}
+    region : Region, optional
+    derivation : DerivativeClaim, optional
+        For ``lhs="Vdot"``: the claim whose structured terms are lhs (proved exact by it).
+    role : {None, "lower", "upper", "vdot"}
+        What the step is in a theorem's chain: V ≥ L, V ≤ U, V̇ ≤ W.
+    definitions : mapping
+        Named constants of the bounds: symbol → expression in the parameters or a
+        callable ``f(values)`` (an eigenvalue of a matrix parameter), evaluated exactly
+        at the checked values.
+    witness_seconds : float
+        Budget of the witness search of one term that the rule does not prove.
+    """
+
+    name: str
+    functional: object
+    system: object
+    lhs: str
+    bounds: Sequence
+    rhs: object
+    measures: Sequence
+    relation: str = "<="
+    region: Region | None = None
+    derivation: object = None
+    role: str | None = None
+    definitions: Mapping = dataclasses.field(default_factory=dict)
+    witness_seconds: float = 5.0
+
+    def __post_init__(self):
+        problems = []
+        if self.lhs not in ("V", "Vdot"):
+            problems.append(f"lhs: expected 'V' or 'Vdot', got {self.lhs!r}")
+        if self.lhs == "Vdot" and self.derivation is None:
+            problems.append("lhs 'Vdot' needs derivation= the DerivativeClaim of the structured V̇ (its terms are "
+                            "the lhs)")
+        if self.relation not in ("<=", ">="):
+            problems.append(f"relation: expected '<=' or '>=', got {self.relation!r}")
+        if self.role not in (None, "lower", "upper", "vdot"):
+            problems.append(f"role: expected None, 'lower', 'upper' or 'vdot', got {self.role!r}")
+        if not all(isinstance(m, Measure) for m in self.measures):
+            problems.append("measures: expected Measure objects (lkverify.certify.steps.measures)")
+        if not all(isinstance(b, TermBound) for b in self.bounds):
+            problems.append("bounds: expected TermBound objects")
+        if problems:
+            raise InputError(f"bound step {self.name}: " + "; ".join(problems))
+        object.__setattr__(self, "bounds", tuple(self.bounds))
+        object.__setattr__(self, "measures", tuple(self.measures))
+        object.__setattr__(self, "rhs", sympy.sympify(self.rhs))
+
+    @property
+    def direction(self) -> str:
+        return "upper" if self.relation == "<=" else "lower"
+
+    def lhs_terms(self) -> list:
+        """The labelled terms of lhs (the functional's, or the derivation's structured V̇)."""
+        return list(self.functional.terms if self.lhs == "V" else self.derivation.terms)
+
+    def with_bounds(self, **changes) -> "TermwiseBound":
+        """A copy with fields replaced (for mutation tests: ``step.with_bounds(region=...)``)."""
+        return dataclasses.replace(self, **changes)
+
+    def named_constants(self, values: Mapping) -> dict:
+        """The named constants of :attr:`definitions` at the values (symbol → exact value)."""
+        sub = self.system.parameters.substitution(values)
+        out = {}
+        from ...declare.parameters import apply_substitution
+
+        for sym, d in self.definitions.items():
+            v = d(values) if callable(d) and not isinstance(d, sympy.Basic) else apply_substitution(sympy.sympify(d), sub)
+            out[sym] = sympy.sympify(v)
+        return out
+
+    # -- checking ------------------------------------------------------------------------
+    def check(self, values: Mapping, *, budget=None, search: bool = True) -> ChainResult:
+        """Check every term bound and the sum at resolved parameter values."""
+        start = _time.perf_counter()
+        measures = {m.name: m for m in self.measures}
+        ctx = Context(self.system, values, measures, self.region, budget=budget)
+        ctx.constants = self.named_constants(values)
+        terms = self.lhs_terms()
+        by_label = {}
+        for term in terms:
+            by_label.setdefault(term.text, []).append(term)
+        covered: dict = {}
+        problems = []
+        for tb in self.bounds:
+            for label in tb.terms:
+                if label not in by_label:
+                    problems.append(f"no lhs term is labelled {label!r}")
+                covered[label] = covered.get(label, 0) + 1
+        missing = [t.text for t in terms if t.text not in covered]
+        twice = [label for label, n in covered.items() if n > 1]
+        if missing:
+            problems.append(f"lhs terms without a bound: {', '.join(missing)}")
+        if twice:
+            problems.append(f"lhs terms bounded twice: {', '.join(twice)}")
+        if problems:
+            return ChainResult(self.name, Status.UNDECIDED, "; ".join(problems), (), {}, self.rhs,
+                               _time.perf_counter() - start)
+        constants: dict = {}
+        results = []
+        sym = "≤" if self.direction == "upper" else "≥"
+        for tb in self.bounds:
+            expr = sum((term.expr for label in tb.terms for term in by_label[label]), sympy.S.Zero)
+            statement = f"{' + '.join(tb.terms)} {sym} {tb.bound}"
+            results.append(self._check_term(tb, expr, statement, ctx, constants, search))
+        total = sum((_put(tb.bound, constants) for tb in self.bounds), sympy.S.Zero)
+        rhs = ctx.at(_put(self.rhs, constants))
+        slack = sympy.expand(ctx.at(rhs - total) if self.direction == "upper" else ctx.at(total - rhs))
+        sum_ok = slack == 0 or nonnegative(slack)
+        statuses = [r.status for r in results]
+        worst = _weakest(statuses)
+        if not sum_ok:
+            status = Status.UNDECIDED if worst.is_proof else worst
+            detail = (f"the term bounds do not add up to the right-hand side: rhs − Σ bounds = {slack} is not "
+                      f"shown ≥ 0")
+        elif worst.is_proof:
+            status = worst
+            detail = (f"proved term by term ({len(results)} bounds, every application {status}); "
+                      f"Σ bounds {'=' if slack == 0 else sym} rhs")
+        else:
+            status = worst
+            bad = [r for r in results if r.status is worst]
+            detail = f"{len(bad)} of {len(results)} term bounds {worst}: " + "; ".join(
+                f"{r.statement}: {r.detail}" for r in bad[:3])
+        return ChainResult(self.name, status, detail, tuple(results), constants, rhs, _time.perf_counter() - start)
+
+    def _check_term(self, tb: TermBound, expr, statement, ctx: Context, constants: dict, search: bool) -> TermResult:
+        direction = self.direction
+        apps: list[Application] = []
+        try:
+            app = tb.rule.apply(expr, direction, ctx)
+        except InputError as exc:
+            return TermResult(tb.terms, statement, Status.UNDECIDED, f"the rule does not apply: {exc}",
+                              tb.rule.name)
+        apps.append(app)
+        bound = app.bound
+        for rewrite in tb.then:
+            if bound is None:
+                break
+            nxt = rewrite.rewrite(bound, ctx) if isinstance(rewrite, Young) else rewrite.apply(bound, direction, ctx)
+            apps.append(nxt)
+            bound = nxt.bound
+        for a in apps:
+            for name, value, _ in a.constants:
+                constants[name] = value
+        stated = ctx.at(_put(tb.bound, constants))
+        status = _weakest(a.status for a in apps)
+        rule = " then ".join(a.rule for a in apps)
+        detail = next((a.detail for a in apps if not a.status.is_proof), None)
+        if status.is_proof and bound is not None:
+            rest = sympy.expand(stated - bound if direction == "upper" else bound - stated)
+            if not (rest == 0 or nonnegative(rest)):
+                status = Status.UNDECIDED
+                detail = (f"the stated bound is not the rule's: the rule gives {bound}, the step states {stated} "
+                          f"(difference {rest} not shown ≥ 0)")
+        if status.is_proof:
+            constant_note = "; ".join(f"{n} = {float(v):.6g} (certified)" for a in apps for n, v, _ in a.constants)
+            detail = f"{rule}: {len(sum((list(a.conditions) for a in apps), []))} side conditions hold" + (
+                f"; {constant_note}" if constant_note else "")
+            return TermResult(tb.terms, statement, status, detail, rule, tuple(apps), bound=bound)
+        witness = None
+        if search:
+            witness = self._witness(expr, stated, ctx)
+        if witness is not None:
+            return TermResult(tb.terms, statement, Status.FAILED,
+                              f"refuted: {witness.text()}; the rule's check: {detail}", rule, tuple(apps), witness,
+                              bound)
+        return TermResult(tb.terms, statement, Status.UNDECIDED if status is not Status.FAILED else Status.UNDECIDED,
+                          f"not proved ({detail}); no witness found in {self.witness_seconds:g} s", rule,
+                          tuple(apps), None, bound)
+
+    def _witness(self, expr, stated, ctx: Context):
+        try:
+            from .witnesses import search_witness
+        except ImportError:  # pragma: no cover - the module ships with the package
+            return None
+        lhs, rhs = (expr, stated) if self.direction == "upper" else (-expr, -stated)
+        try:
+            return search_witness(lhs, rhs, system=self.system, values=ctx.values, measures=list(self.measures),
+                                  region=self.region, budget=self.witness_seconds)
+        except InputError:
+            return None
+
+
+@dataclasses.dataclass(frozen=True)
+class Decay:
+    """The last links of a theorem: from checked V ≥ L, V ≤ U, V̇ ≤ W to a certified decay.
+
+    The three steps' right-hand sides (at the checked values, with their certified
+    constants) form a :class:`~lkverify.certify.decay.DecayModel` on the box the region
+    implies; :func:`~lkverify.certify.decay.certify_model` estimates and certifies
+    L ≥ l_v x_v², W + c̃U^p ≤ 0, V(t0) ≤ C0‖χ‖² and the envelope.
+
+    Parameters
+    ----------
+    p : Rational
+        The target V̇ ≤ −c̃V^p.
+    point_variables : tuple of str
+        Measures bounded jointly at t0 by the history norm.
+    history_variables : mapping
+        Measure name → κ (an expression in the parameters) with measure ≤ κ‖χ‖ at t0.
+    outputs : mapping
+        Output name → measure name whose decay is bounded (``{"d1": "e", "d2": "w"}``).
+    descriptions : mapping
+        Output name → the sentence shown before its value.
+    paper : mapping
+        The paper's printed constants, for comparison.
+    """
+
+    p: object
+    point_variables: tuple
+    history_variables: Mapping
+    outputs: Mapping
+    rate_name: str = "d3"
+    descriptions: Mapping = dataclasses.field(default_factory=dict)
+    paper: Mapping = dataclasses.field(default_factory=dict)
+
+    def model(self, steps: Mapping, values: Mapping):
+        """The DecayModel of the checked steps (``steps``: role → (TermwiseBound, ChainResult))."""
+        from ..decay import DecayModel
+
+        lower, upper, vdot = (steps[r] for r in ("lower", "upper", "vdot"))
+        claim = vdot[0]
+        sub = claim.system.parameters.substitution(values)
+        measures = {m.name: m for m in claim.measures}
+        used = set()
+        for _, res in (lower, upper, vdot):
+            used |= {s_.name for s_ in sympy.sympify(res.rhs).free_symbols}
+        variables = tuple(m.symbol for name, m in measures.items() if name in used)
+        if claim.region is None:
+            raise InputError(f"{claim.name}: the decay needs the region of the V̇ step")
+        box = claim.region.box([measures[v.name] for v in variables], sub)
+        from ...declare.parameters import apply_substitution
+
+        hist = {measures[k].symbol: apply_substitution(sympy.sympify(v), sub) for k, v in self.history_variables.items()}
+        return DecayModel(claim.name, variables, box, lower[1].rhs, upper[1].rhs, vdot[1].rhs, sympy.sympify(self.p),
+                          tuple(measures[k].symbol for k in self.point_variables), hist,
+                          {k: measures[v].symbol for k, v in self.outputs.items()}, self.rate_name,
+                          derivation="the checked bound steps V ≥ L, V ≤ U, V̇ ≤ W")
+
+    def certify(self, steps: Mapping, values: Mapping, *, budget=None, progress=None):
+        """(results, status, detail): the certified decay of the checked steps, or why not."""
+        from ..decay import certify_model
+
+        model = self.model(steps, values)
+        bad = [str(v) for v in model.region.values() if not sympy.sympify(v).is_number]
+        if bad:
+            return [], Status.UNDECIDED, f"the region's bounds have no value ({', '.join(bad)}); set them"
+        cert = certify_model(model, budget=budget, progress=progress)
+        if cert is None:
+            return [], Status.UNDECIDED, (
+                "the estimator finds no admissible constants: V̇ ≥ 0 is sampled on the region or the model's "
+                "shape is not covered (choose a smaller region or other functional parameters)")
+        results = cert.results(self.paper, self.descriptions)
+        for env in cert.envelopes:
+            results.append(Result(Kind.ENVELOPE, f"envelope {env.name}", cert.status,
+                                  {"d": env.d, "rate": env.kappa, "p": env.p}, env.text()))
+        if cert.status is Status.CERTIFIED:
+            dt = cert.constants.get("delta_tilde")
+            detail = (f"V̇ ≤ −c̃V^{self.p} with c̃ = {cert.constants.get('c_tilde', float('nan')):.4g} on the region; "
+                      f"certified for ‖χ‖ < δ̃ = {dt:.4g}; " + "; ".join(env.text() for env in cert.envelopes))
+        else:
+            detail = cert.detail
+            if cert.counterexamples:
+                what, point = cert.counterexamples[0]
+                detail += f"; witness (a point of the region's box where it fails): {what} at {point}"
+        return results, cert.status, detail

@@ -1,0 +1,205 @@
+"""Scalar measures of a state and its history, and the region that bounds them.
+
+A bound step's right-hand side is written in a few nonnegative scalars — the papers'
+‖ω(t)‖, ‖s(t) − r‖, ∫_{t−τ}^t ‖s(ξ) − r‖^μ dξ, (∫‖s(ξ) − r‖³ dξ)^{1/3},
+max_{[t−τ, t]} ‖s(ξ) − r‖ — and named constants.  A :class:`Measure` is such a scalar:
+a symbol (nonnegative) and its definition in the model's own vocabulary (the state
+functions at t, at ξ under a window integral), so that a rule can substitute the
+definition and compare with the exact term, and a witness can evaluate it.
+
+A :class:`Region` bounds measures of kind ``norm`` (at t) and ``sup`` (over the window);
+it implies a box for every measure (:meth:`Region.box`): a window norm of order p over a
+window of length h is at most h^{1/p} times the sup of the same vector.
+
+Examples
+--------
+>>> import sympy
+>>> from lkverify import UnitVector, Vector, t, xi
+>>> s, omega = UnitVector("s"), Vector("omega")
+>>> r = sympy.Matrix([0, 0, 1])
+>>> e = norm_measure("e", s(t) - r, text="‖s(t) − r‖")
+>>> j = window_norm("j", s(xi) - r, p=3, window=1, text="(∫‖s(ξ) − r‖³dξ)^{1/3}")
+>>> m = sup_norm("m", s(xi) - r, window=1, text="max ‖s(ξ) − r‖")
+>>> w = norm_measure("w", omega(t))
+>>> region = Region({m: sympy.Rational(1, 10), w: sympy.Rational(1, 5)})
+>>> region.box([e, j, w])
+{e: 1/10, j: 1/10, w: 1/5}
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Mapping, Sequence
+
+import sympy
+
+from ...declare.symbols import t, xi
+from ...declare.vectors import as_column, norm_squared
+from ...errors import InputError
+
+__all__ = ["KINDS", "Measure", "Region", "norm_measure", "sup_norm", "window_integral_measure", "window_norm"]
+
+#: the kinds of measure: ‖v(t)‖, (∫‖v(ξ)‖^p)^{1/p}, ∫‖v(ξ)‖^p, max over the window of ‖v(ξ)‖
+KINDS = ("norm", "window_norm", "window_integral", "sup")
+
+
+@dataclasses.dataclass(frozen=True)
+class Measure:
+    """A nonnegative scalar of the state and its history.
+
+    Parameters
+    ----------
+    name : str
+        The symbol's name in bounds (``"e"``, ``"w"``, ``"j"``).
+    kind : {"norm", "window_norm", "window_integral", "sup"}
+    vector : sympy.Matrix
+        The vector measured: at ``t`` for ``norm``, at ``xi`` for the window kinds.
+    power : Rational
+        p of ``window_norm`` / ``window_integral`` (1 otherwise).
+    window : sympy expression
+        The window length h (the window is [t − h, t]); unused for ``norm``.
+    text : str
+        How reports print it.
+    """
+
+    name: str
+    kind: str
+    vector: object
+    power: object = 1
+    window: object = 0
+    text: str = ""
+
+    def __post_init__(self):
+        if not (isinstance(self.name, str) and self.name.isidentifier()):
+            raise InputError(f"measure name: expected an identifier such as 'e', got {self.name!r}")
+        if self.kind not in KINDS:
+            raise InputError(f"measure {self.name}: kind: expected one of {', '.join(KINDS)}, got {self.kind!r}")
+        vec = as_column(self.vector)
+        object.__setattr__(self, "vector", sympy.ImmutableMatrix(vec))
+        p = sympy.sympify(self.power)
+        if not (p.is_number and p.is_positive) and not p.free_symbols:
+            raise InputError(f"measure {self.name}: power: expected a positive number, got {self.power!r}")
+        object.__setattr__(self, "power", p)
+        object.__setattr__(self, "window", sympy.sympify(self.window))
+        at = t if self.kind == "norm" else xi
+        wrong = {a for a in vec.atoms(sympy.core.function.AppliedUndef) if a.args[0] != at}
+        if wrong:
+            raise InputError(f"measure {self.name}: the vector must be written at {at} for kind {self.kind!r}, "
+                             f"got {sorted(map(str, wrong))[0]}")
+        if not self.text:
+            object.__setattr__(self, "text", self.name)
+
+    @property
+    def symbol(self) -> sympy.Symbol:
+        """The nonnegative symbol that stands for the measure in bounds."""
+        return sympy.Symbol(self.name, nonnegative=True)
+
+    def pointwise(self, at=xi) -> sympy.Expr:
+        """‖vector‖ at time ``at`` (the integrand's norm for the window kinds)."""
+        v = self.vector if at == (t if self.kind == "norm" else xi) else self.vector.subs(
+            t if self.kind == "norm" else xi, at)
+        return sympy.sqrt(norm_squared(v))
+
+    @property
+    def definition(self) -> sympy.Expr | None:
+        """The measure as an expression of the model (None for ``sup``: a maximum has no closed form)."""
+        if self.kind == "norm":
+            return sympy.sqrt(norm_squared(self.vector))
+        if self.kind == "sup":
+            return None
+        integral = sympy.Integral(norm_squared(self.vector) ** (self.power / 2), (xi, t - self.window, t))
+        return integral if self.kind == "window_integral" else integral ** (1 / self.power)
+
+    def substitute(self, expr) -> sympy.Expr:
+        """``expr`` with this measure's symbol replaced by its definition."""
+        if self.definition is None:
+            raise InputError(f"measure {self.name} ({self.text}) is a maximum over the window and has no "
+                             f"closed form; bound it with a rule instead of substituting it")
+        return sympy.sympify(expr).xreplace({self.symbol: self.definition})
+
+    def __str__(self) -> str:
+        return self.text
+
+
+def norm_measure(name: str, vector, *, text: str = "") -> Measure:
+    """‖vector(t)‖, e.g. ``norm_measure("w", omega(t))``."""
+    return Measure(name, "norm", vector, text=text or f"‖{name}‖")
+
+
+def window_norm(name: str, vector, *, p, window, text: str = "") -> Measure:
+    """(∫_{t−h}^t ‖vector(ξ)‖^p dξ)^{1/p} with h = ``window``."""
+    return Measure(name, "window_norm", vector, power=p, window=window, text=text)
+
+
+def window_integral_measure(name: str, vector, *, p, window, text: str = "") -> Measure:
+    """∫_{t−h}^t ‖vector(ξ)‖^p dξ with h = ``window`` (no root: the papers' ∫‖s(ξ) − r‖^μ dξ)."""
+    return Measure(name, "window_integral", vector, power=p, window=window, text=text)
+
+
+def sup_norm(name: str, vector, *, window, text: str = "") -> Measure:
+    """max over [t − h, t] of ‖vector(ξ)‖ (the papers' ‖x_t‖_τ when the vector is the state)."""
+    return Measure(name, "sup", vector, window=window, text=text)
+
+
+@dataclasses.dataclass(frozen=True)
+class Region:
+    """Upper bounds on measures: the region of a step (``{measure: bound}``).
+
+    Only ``norm`` and ``sup`` measures are bounded directly; the others get the box
+    that follows (:meth:`box`).
+    """
+
+    bounds: Mapping
+
+    def __post_init__(self):
+        fixed = {}
+        for m, b in dict(self.bounds).items():
+            if not isinstance(m, Measure):
+                raise InputError(f"region: expected Measure keys, got {type(m).__name__}")
+            if m.kind not in ("norm", "sup"):
+                raise InputError(f"region: bound a norm at t or a sup over the window, got {m.kind} {m.text}; "
+                                 f"its bound follows from the sup of the same vector")
+            fixed[m] = sympy.sympify(b)
+        object.__setattr__(self, "bounds", fixed)
+
+    def at(self, substitution: Mapping) -> "Region":
+        """The region with parameter values substituted in the bounds."""
+        return Region({m: sympy.sympify(b).xreplace(dict(substitution)) for m, b in self.bounds.items()})
+
+    def bound_of(self, measure: Measure, substitution: Mapping | None = None):
+        """The upper bound the region implies for ``measure`` (None: unbounded)."""
+        sub = dict(substitution or {})
+        for m, b in self.bounds.items():
+            if m == measure:
+                return sympy.sympify(b).xreplace(sub)
+        for m, b in self.bounds.items():
+            if m.kind != "sup":
+                continue
+            b = sympy.sympify(b).xreplace(sub)
+            h = sympy.sympify(m.window).xreplace(sub)
+            if measure.kind == "norm" and measure.vector == m.vector.subs(xi, t):
+                return b
+            if measure.kind in ("window_norm", "window_integral") and measure.vector == m.vector:
+                hm = sympy.sympify(measure.window).xreplace(sub)
+                if sympy.simplify(hm - h).is_positive:
+                    continue  # a longer window than the sup's: no bound
+                return hm ** (1 / measure.power) * b if measure.kind == "window_norm" else hm * b ** measure.power
+        return None
+
+    def box(self, measures: Sequence[Measure], substitution: Mapping | None = None) -> dict:
+        """``{symbol: upper bound}`` for each measure (raises InputError if one is unbounded)."""
+        out = {}
+        for m in measures:
+            b = self.bound_of(m, substitution)
+            if b is None:
+                raise InputError(f"region: no bound on {m.text} follows from {self.describe()}; bound it, or the "
+                                 f"sup of its vector over the window")
+            out[m.symbol] = b
+        return out
+
+    def scaled(self, factor) -> "Region":
+        """Every bound times ``factor`` (a region twice too large: ``scaled(2)``)."""
+        return Region({m: sympy.sympify(b) * factor for m, b in self.bounds.items()})
+
+    def describe(self) -> str:
+        return ", ".join(f"{m.text} ≤ {b}" for m, b in self.bounds.items()) or "no bounds"

@@ -1,0 +1,767 @@
+"""The checked rules of bound steps: each application is matched, its side conditions decided.
+
+A proof bounds one term of V or of the exact V̇ at a time and names the rule, the way
+the paper does.  A rule *derives* the bound from the term and its arguments; the step
+then accepts the author's stated bound only if it is the derived one or weaker by a
+nonnegative remainder.  Every application records its side conditions with a status:
+
+===========================  ==========================================================
+:class:`Equal`               term = bound once the measures are replaced by their definitions
+:class:`Nonpositive`         term ≤ 0 (a nonpositive constant times nonnegative factors)
+:class:`Rayleigh`            c·uᵀMu between c·m·‖u‖² (m ≤ λ_min(M) or m ≥ λ_max(M), exact)
+:class:`CauchySchwarz`       |c·uᵀMv| ≤ |c|·κ·‖u‖·‖v‖ with κ ≥ ‖M‖ (κ²I − MᵀM ⪰ 0, exact)
+:class:`WindowWeight`        ∫ g·‖v‖^k between (min g)·(measure) and (max g)·(measure), or
+                             Hölder with conjugate exponents (p, q), kp = the measure's order
+:class:`Template`            term ≤ κ·(monomial of measures): κ the supremum over a chart
+                             of the region (certified with arb)
+:class:`Young`               c·x·y ≤ c(ε x^p/p + ε^{−q/p} y^q/q), p, q conjugate, ε > 0
+===========================  ==========================================================
+
+Vector norms inside the rules are bounded by :class:`Norm` trees: a measure's vector
+(:func:`measured`), a unit vector (:func:`unit`), a cross product ‖a × b‖ ≤ ‖a‖‖b‖
+(:func:`crossed`), a nonnegative scalar factor (:func:`scaled`) and a window integral
+‖∫ g v‖ ≤ ∫ |g|·‖v‖ followed by a weight bound or Hölder (:func:`integral_of`).  A tree
+is matched against the vector it bounds exactly (modulo the unit-vector constraints).
+
+Examples
+--------
+>>> import sympy
+>>> from lkverify import Parameters, System, Equation, Term, Vector, t
+>>> P = Parameters(); k = P.scalar("k", positive=True, default=2)
+>>> x = Vector("x", 2)
+>>> sys_ = System([Equation(x, [Term(-k * x(t))])], parameters=P)
+>>> from lkverify.certify.steps.measures import norm_measure
+>>> n = norm_measure("n", x(t))
+>>> ctx = Context(sys_, P.resolve({}), {"n": n})
+>>> M = sympy.Matrix([[2, 1], [1, 2]])
+>>> app = Rayleigh(x(t), M, eigenvalue=3, norm_squared=n.symbol**2).apply((x(t).T * M * x(t))[0], "upper", ctx)
+>>> app.status.value, app.bound
+('exact', 3*n**2)
+>>> Rayleigh(x(t), M, eigenvalue=2, norm_squared=n.symbol**2).apply((x(t).T * M * x(t))[0], "upper", ctx).detail
+'side condition fails: 2·I − M ⪰ 0 (the eigenvalue bound): D ⪰ 0 is false: x = (1, 1) gives xᵀDx = -2 < 0 (exact); λ_min = -1.'
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Mapping
+
+import sympy
+from sympy.core.function import AppliedUndef
+
+from ...declare.parameters import apply_substitution
+from ...declare.symbols import t, xi
+from ...declare.vectors import as_column
+from ...errors import InputError
+from ...status import Status
+from ..matrices import matrix_positive_definite
+from .measures import Measure, Region
+
+__all__ = ["Application", "CauchySchwarz", "Context", "Equal", "Nonpositive", "Norm", "Rayleigh", "Rule",
+           "Template", "WindowWeight", "Young", "crossed", "integral_of", "measured", "nonnegative", "scaled", "unit"]
+
+
+#: how a Template rule certifies its supremum (as lkverify.certify.constants.ConstantsTuning's defaults)
+TEMPLATE_ACCURACY = None  # set below (Accuracy(rel_gap=5e-3)); kept lazy to avoid an import cycle
+TEMPLATE_BOXES = 40_000
+TEMPLATE_ENCLOSURE = "mean-value"
+
+
+# -- context --------------------------------------------------------------------------------
+@dataclasses.dataclass
+class Context:
+    """What a rule needs: the system, the parameter values, the measures by name, the region."""
+
+    system: object
+    values: Mapping
+    measures: Mapping
+    region: Region | None = None
+    budget: object = None
+    constants: Mapping | None = None
+
+    def __post_init__(self):
+        self.sub = self.system.parameters.substitution(self.values)
+
+    def at(self, expr):
+        """``expr`` with the parameter values (and the step's named constants) substituted.
+
+        A callable is evaluated as ``expr(ctx)`` (a constant computed from the values,
+        e.g. an eigenvalue of a matrix parameter)."""
+        if callable(expr) and not isinstance(expr, sympy.Basic):
+            expr = expr(self)
+        e = sympy.sympify(expr) if not isinstance(expr, sympy.MatrixBase) else expr
+        e = apply_substitution(e, self.sub)
+        if self.constants:
+            e = e.xreplace(self.constants)
+        return e
+
+    def definitions(self, expr):
+        """``expr`` with every measure symbol replaced by its definition (parameters substituted)."""
+        rep = {m.symbol: m.definition for m in self.measures.values() if m.definition is not None}
+        return self.at(sympy.sympify(expr).xreplace(rep))
+
+    def measure(self, name: str) -> Measure:
+        try:
+            return self.measures[name]
+        except KeyError:
+            raise InputError(f"unknown measure {name!r}: expected one of {', '.join(self.measures)}; declare it "
+                             f"with the step's measures") from None
+
+    def zero(self, expr) -> bool:
+        """Is ``expr`` exactly 0 on the state manifold (unit vectors, frames)?"""
+        e = sympy.expand(self.at(expr))
+        if e == 0:
+            return True
+        from ...symbolic.canonical import Canonicalizer
+
+        canon = Canonicalizer(self.system.constraint_polynomials)
+        return canon.normal_forms([e]).polys[0] == 0
+
+
+@dataclasses.dataclass(frozen=True)
+class Condition:
+    """A side condition of a rule application and how it was decided."""
+
+    text: str
+    status: Status
+    detail: str = ""
+
+    def to_json(self) -> dict:
+        return {"condition": self.text, "status": self.status.value, "detail": self.detail}
+
+
+@dataclasses.dataclass(frozen=True)
+class Application:
+    """One rule applied to one term: the bound it derives and the side conditions checked.
+
+    ``status`` is the weakest of the conditions; ``detail`` names the first that fails.
+    """
+
+    rule: str
+    bound: object
+    conditions: tuple
+    constants: tuple = ()  # (name, value, Result-like dict) of constants the rule certified
+
+    @property
+    def status(self) -> Status:
+        sts = [c.status for c in self.conditions]
+        for s in (Status.FAILED, Status.UNDECIDED, Status.CERTIFIED):
+            if s in sts:
+                return s
+        return Status.EXACT
+
+    @property
+    def detail(self) -> str:
+        for c in self.conditions:
+            if not c.status.is_proof:
+                return f"side condition fails: {c.text}: {c.detail}"
+        return f"{self.rule}: " + "; ".join(c.text for c in self.conditions)
+
+    def to_json(self) -> dict:
+        return {"rule": self.rule, "bound": str(self.bound), "status": self.status.value,
+                "conditions": [c.to_json() for c in self.conditions],
+                "constants": {name: value for name, value, _ in self.constants}}
+
+
+def _cond(text, ok, detail="", *, certified=False) -> Condition:
+    if ok is None:
+        return Condition(text, Status.UNDECIDED, detail or "not decided")
+    if ok:
+        return Condition(text, Status.CERTIFIED if certified else Status.EXACT, detail)
+    return Condition(text, Status.FAILED, detail or "does not hold")
+
+
+def _fails(rule: str, text: str, detail: str, bound=None) -> Application:
+    return Application(rule, bound, (Condition(text, Status.FAILED, detail),))
+
+
+# -- nonnegativity, structurally --------------------------------------------------------------
+def nonnegative(expr) -> bool:
+    """True when ``expr`` is ≥ 0 by its structure (sums and products of nonnegative factors).
+
+    Nonnegative factors: nonnegative numbers and symbols, even integer powers, powers
+    with a nonnegative base, sums of squares, integrals over windows of nonnegative
+    length of nonnegative integrands.  False means "not shown", not "negative".
+
+    >>> import sympy
+    >>> x, y = sympy.symbols("x y", real=True)
+    >>> nonnegative(3 * (x**2 + y**2) ** sympy.Rational(3, 2)), nonnegative(x * y)
+    (True, False)
+    """
+    e = sympy.sympify(expr)
+    if e.is_number:
+        return bool(e.is_nonnegative)
+    if e.is_nonnegative:
+        return True
+    if isinstance(e, sympy.Add):
+        return all(nonnegative(a) for a in e.args)
+    if isinstance(e, sympy.Mul):
+        neg = [a for a in e.args if a.is_number and a.is_negative]
+        rest = [a for a in e.args if not (a.is_number and a.is_negative)]
+        return len(neg) % 2 == 0 and all(nonnegative(a) for a in rest)
+    if isinstance(e, sympy.Pow):
+        if e.exp.is_Integer and e.exp % 2 == 0:
+            return True
+        return nonnegative(e.base)
+    if isinstance(e, sympy.Integral):
+        if any(len(lim) != 3 for lim in e.limits):
+            return False
+        widths = [sympy.simplify(lim[2] - lim[1]) for lim in e.limits]
+        return all(w.is_nonnegative for w in widths) and nonnegative(e.function)
+    if isinstance(e, sympy.Abs):
+        return True
+    return False
+
+
+def _constant_and_monomial(expr, symbols):
+    """(c, monomial) with expr = c·monomial, c free of ``symbols``; None if expr is not a single product."""
+    e = sympy.factor_terms(sympy.sympify(expr))
+    if isinstance(e, sympy.Add):
+        return None
+    c, m = sympy.S.One, sympy.S.One
+    for f in sympy.Mul.make_args(e):
+        if f.free_symbols & set(symbols):
+            m *= f
+        else:
+            c *= f
+    return c, m
+
+
+def _sign(expr) -> int | None:
+    """+1 (≥ 0), −1 (≤ 0) or None, for a constant expression (parameters with assumptions allowed)."""
+    e = sympy.sympify(expr)
+    if e.is_nonnegative or nonnegative(e):
+        return 1
+    if e.is_nonpositive or nonnegative(-e):
+        return -1
+    return None
+
+
+# -- norm trees -------------------------------------------------------------------------------
+@dataclasses.dataclass(frozen=True)
+class Norm:
+    """An upper bound ``‖vector‖ ≤ bound``, with how it follows (see the constructors below).
+
+    ``vector`` is in the model's vocabulary, ``bound`` in measures (at t) or in pointwise
+    norms at ξ (inside a window integral).
+    """
+
+    how: str
+    vector: object
+    bound: object
+    parts: tuple = ()
+    conditions: tuple = ()
+
+    def all_conditions(self) -> list:
+        out = list(self.conditions)
+        for p in self.parts:
+            if isinstance(p, Norm):
+                out += p.all_conditions()
+        return out
+
+
+def measured(measure: Measure, *, at=None) -> Norm:
+    """‖v‖ = the measure, for its own vector (``at=xi``: pointwise inside a window integral)."""
+    if measure.kind == "norm" and at is None:
+        return Norm(f"‖{measure.text}‖ = {measure.name}", measure.vector, measure.symbol)
+    if measure.kind == "sup":
+        raise InputError(f"measured({measure.name}): a sup measure bounds norms pointwise; use it in a region")
+    vec = measure.vector if measure.kind != "norm" else measure.vector.subs(t, xi)
+    return Norm(f"‖v(ξ)‖ of {measure.name}", vec, measure.pointwise())
+
+
+def unit(vector) -> Norm:
+    """‖u‖ = 1 for a unit state or a unit parameter vector (checked where it is used)."""
+    return Norm("unit vector", sympy.ImmutableMatrix(as_column(vector)), sympy.S.One)
+
+
+def crossed(a: Norm, b: Norm) -> Norm:
+    """‖a × b‖ ≤ ‖a‖‖b‖."""
+    va, vb = sympy.Matrix(a.vector), sympy.Matrix(b.vector)
+    return Norm("‖a×b‖ ≤ ‖a‖‖b‖", sympy.ImmutableMatrix(va.cross(vb)), a.bound * b.bound, (a, b))
+
+
+def scaled(factor, inner: Norm) -> Norm:
+    """‖c·v‖ = |c|·‖v‖ for a scalar factor c that is nonnegative (checked structurally) or constant."""
+    c = sympy.sympify(factor)
+    cond = _cond(f"the factor {c} is ≥ 0", nonnegative(c) or None if not c.is_number else bool(c >= 0),
+                 "" if nonnegative(c) else "not shown nonnegative")
+    return Norm(f"|c|·‖v‖ (c = {c})", sympy.ImmutableMatrix(sympy.Matrix(inner.vector) * c), c * inner.bound,
+                (inner,), (cond,))
+
+
+def integral_of(pointwise: Norm, *, measure: Measure, power, weight=1, window=None, holder=None) -> Norm:
+    """‖∫_{t−h}^t g(ξ) v(ξ) dξ‖ ≤ ∫ |g|‖v(ξ)‖ ≤ (weight bound or Hölder)·(measure).
+
+    ``pointwise`` bounds ‖v(ξ)‖ by the measure's pointwise norm to ``power`` k.  With
+    ``holder=None`` the measure must be ``window_integral`` of order k (or
+    ``window_norm`` of order k) and the bound is max|g|·measure; with ``holder=(p, q)``
+    (1/p + 1/q = 1, k·p = the measure's order) it is (∫|g|^q)^{1/q}·measure^k.
+    """
+    return Norm("window integral", ("integral", pointwise, measure, sympy.sympify(power), sympy.sympify(weight),
+                                    window, holder), None, (pointwise,))
+
+
+def _window_factor(g, lo, hi, measure: Measure, k, holder, ctx: Context, *, lower=False):
+    """(factor, conditions): ∫_{lo}^{hi} g·P^k ≤ factor·(measure-power), P the pointwise norm."""
+    conds = []
+    g = sympy.expand(ctx.at(g))
+    order = ctx.at(measure.power)
+    width = sympy.simplify(hi - lo)
+    mw = sympy.simplify(ctx.at(measure.window))
+    conds.append(_cond(f"the window [{lo}, {hi}] is the measure's window of length {mw}",
+                       bool(sympy.simplify(width - mw) == 0) and bool(sympy.simplify(hi - t) == 0),
+                       f"window of length {width}"))
+    # g on the window: a polynomial in ξ, bounded at the ends and critical points
+    try:
+        poly = sympy.Poly(g, xi)
+    except sympy.PolynomialError:
+        return None, conds + [_cond("the weight is a polynomial in ξ", False, f"got {g}")]
+    crit = [lo, hi]
+    d = poly.diff(xi)
+    if d.degree() > 0:
+        for root in sympy.roots(d.as_expr(), xi, multiple=True):
+            crit.append(root)
+    vals = [sympy.simplify(g.subs(xi, c)) for c in crit]
+    # only interior critical points matter; with parameters in g we use the ends for linear weights
+    if poly.degree() > 1:
+        return None, conds + [_cond("the weight is affine in ξ", False, f"degree {poly.degree()}")]
+    vals = [sympy.simplify(g.subs(xi, lo)), sympy.simplify(g.subs(xi, hi))]
+    if holder is None:
+        if measure.kind == "window_integral":
+            ok = bool(sympy.simplify(order - k) == 0)
+            conds.append(_cond(f"the integrand's power {k} is the measure's order {order}", ok))
+            mpow = 1
+        elif measure.kind == "window_norm":
+            ok = bool(sympy.simplify(order - k) == 0)
+            conds.append(_cond(f"the integrand's power {k} is the measure's order {order}", ok))
+            mpow = order
+        else:
+            return None, conds + [_cond("a window measure", False, f"{measure.name} is a {measure.kind}")]
+        if lower:
+            lo_vals = [v for v in vals]
+            gmin = sympy.Min(*lo_vals) if len(set(lo_vals)) > 1 else lo_vals[0]
+            s_ = _sign(gmin)
+            conds.append(_cond(f"the weight is ≥ {gmin} ≥ 0 on the window (affine: its ends)", s_ == 1 or None))
+            return (gmin, mpow), conds
+        signs = [_sign(v) for v in vals]
+        conds.append(_cond("the weight is ≥ 0 on the window (affine: its ends)", all(s_ == 1 for s_ in signs) or None,
+                           f"ends {vals}"))
+        gmax = vals[0] if len(set(vals)) == 1 else _max_of(vals)
+        return (gmax, mpow), conds
+    p, q = (ctx.at(x) for x in holder)
+    conds.append(_cond(f"Hölder exponents p = {p}, q = {q} are conjugate (1/p + 1/q = 1)",
+                       bool(sympy.simplify(1 / p + 1 / q - 1) == 0) and bool(p > 1) and bool(q > 1),
+                       f"1/p + 1/q = {sympy.nsimplify(1 / p + 1 / q)}"))
+    if measure.kind != "window_norm":
+        return None, conds + [_cond("Hölder needs a window norm (∫‖v‖^p)^{1/p}", False, f"{measure.name} is a "
+                                    f"{measure.kind}")]
+    conds.append(_cond(f"k·p = {k}·{p} is the measure's order {order}", bool(sympy.simplify(k * p - order) == 0),
+                       f"k·p = {k * p}"))
+    signs = [_sign(v) for v in vals]
+    conds.append(_cond("the weight is ≥ 0 on the window (affine: its ends)", all(s_ == 1 for s_ in signs) or None))
+    gq = sympy.integrate(g ** q, (xi, lo, hi))
+    return (sympy.simplify(gq) ** (1 / q), k), conds
+
+
+def _max_of(vals):
+    d = sympy.simplify(vals[0] - vals[1])
+    if d.is_nonnegative:
+        return vals[0]
+    if d.is_nonpositive:
+        return vals[1]
+    return sympy.Max(*vals)
+
+
+def _resolve_norm(nb: Norm, vector, ctx: Context) -> tuple:
+    """(bound, conditions) proving ‖vector‖ ≤ bound by the tree ``nb`` (vector matched exactly)."""
+    conds = []
+    vec = sympy.Matrix(ctx.at(sympy.Matrix(vector)))
+    if isinstance(nb.vector, tuple) and nb.vector[0] == "integral":
+        _, pointwise, measure, k, weight, _window, holder = nb.vector
+        k = ctx.at(k)
+        ints = list(vec)
+        if not all(isinstance(c, sympy.Integral) and len(c.limits) == 1 for c in ints):
+            return None, [_cond("the vector is a window integral ∫ g(ξ)v(ξ)dξ", False, f"got {vector}")]
+        var, lo, hi = ints[0].limits[0]
+        if any(c.limits[0] != (var, lo, hi) for c in ints):
+            return None, [_cond("the components integrate over one window", False)]
+        inner = sympy.Matrix([c.function for c in ints]).subs(var, xi)
+        g = ctx.at(weight)
+        pv = sympy.Matrix(ctx.at(sympy.Matrix(pointwise.vector)))
+        conds.append(_cond(f"the integrand is g(ξ)·v(ξ) with g = {g}", all(ctx.zero(x) for x in inner - g * pv),
+                           "it is not"))
+        pb, pconds = _resolve_norm(pointwise, pv, ctx)
+        conds += pconds
+        if pb is None:
+            return None, conds
+        P = measure.pointwise()
+        conds.append(_cond(f"‖v(ξ)‖ ≤ ‖{measure.name}(ξ)‖^{k}", ctx.zero(pb - P ** k), f"the pointwise bound is {pb}"))
+        fac, wconds = _window_factor(g, lo.subs(var, xi) if lo.has(var) else lo, hi, measure, k, holder, ctx)
+        conds += wconds
+        if fac is None:
+            return None, conds
+        factor, mpow = fac
+        return factor * measure.symbol ** mpow, conds
+    target = sympy.Matrix(ctx.at(sympy.Matrix(nb.vector)))
+    if target.shape != vec.shape or not all(ctx.zero(x) for x in vec - target):
+        return None, [_cond(f"the vector matches the norm bound's ({nb.how})", False,
+                            f"{list(vec)} is not {list(target)}")]
+    conds.append(_cond(f"the vector matches ({nb.how})", True))
+    if nb.how == "unit vector":
+        conds.append(_cond("it is a unit vector", _is_unit(vec, ctx), "not a unit state or unit parameter"))
+        return sympy.S.One, conds
+    if nb.how.startswith("‖a×b‖"):
+        a, b = nb.parts
+        ba, ca = _resolve_norm(a, a.vector, ctx)
+        bb, cb = _resolve_norm(b, b.vector, ctx)
+        conds += ca + cb
+        if ba is None or bb is None:
+            return None, conds
+        return ba * bb, conds
+    if nb.how.startswith("|c|"):
+        (inner,) = nb.parts
+        bi, ci = _resolve_norm(inner, inner.vector, ctx)
+        conds += ci + list(nb.conditions)
+        if bi is None:
+            return None, conds
+        c = sympy.simplify(nb.bound / inner.bound) if inner.bound != 0 else sympy.S.Zero
+        return ctx.at(c) * bi, conds
+    return nb.bound, conds
+
+
+def _is_unit(vec, ctx: Context) -> bool:
+    return ctx.zero(sum(x**2 for x in vec) - 1)
+
+
+# -- rules --------------------------------------------------------------------------------------
+class Rule:
+    """A checked rule.  ``apply(term, direction, ctx)`` → :class:`Application` (direction "upper": term ≤ bound)."""
+
+    name = "rule"
+
+    def apply(self, term, direction: str, ctx: Context) -> Application:  # pragma: no cover - interface
+        raise NotImplementedError
+
+
+@dataclasses.dataclass(frozen=True)
+class Equal(Rule):
+    """The term equals the bound once the measures are replaced by their definitions (exactly)."""
+
+    name = "equality (definition of the measures)"
+    bound: object = None
+
+    def apply(self, term, direction, ctx):
+        diff = ctx.definitions(self.bound) - ctx.at(term)
+        ok = ctx.zero(diff)
+        return Application(self.name, ctx.at(self.bound),
+                           (_cond(f"the term is {self.bound} exactly", ok, "they differ"),))
+
+
+@dataclasses.dataclass(frozen=True)
+class Nonpositive(Rule):
+    """term ≤ 0 (direction "upper") or term ≥ 0 ("lower"): a signed constant times nonnegative factors."""
+
+    name = "a term of known sign dropped"
+
+    def apply(self, term, direction, ctx):
+        e = ctx.at(term)
+        target = -e if direction == "upper" else e
+        ok = nonnegative(sympy.factor_terms(target)) or nonnegative(sympy.expand(target))
+        return Application(self.name, sympy.S.Zero,
+                           (_cond(f"the term is {'≤' if direction == 'upper' else '≥'} 0", ok or None,
+                                  f"{e} is not shown to have that sign"),))
+
+
+@dataclasses.dataclass(frozen=True)
+class Rayleigh(Rule):
+    """c·uᵀMu ≤ c·m·‖u‖² (c ≥ 0, m ≥ λ_max) or ≥ (c ≥ 0, m ≤ λ_min), and the reverse for c ≤ 0.
+
+    ``factor`` c may contain measures (e.g. −(a − τb)‖s − r‖^{μ−1} = −(a − τb)e^{μ−1});
+    ``norm_squared`` is ‖u‖² in measures, checked exactly (modulo unit constraints, so
+    ‖s × r‖² = e²(1 − e²/4) is an allowed unit-vector identity).
+    """
+
+    vector: object
+    matrix: object
+    factor: object = 1
+    eigenvalue: object = None
+    norm_squared: object = None
+    name = "Rayleigh quotient (eigenvalue bound)"
+
+    def apply(self, term, direction, ctx):
+        u = sympy.Matrix(ctx.at(sympy.Matrix(as_column(self.vector))))
+        M = sympy.Matrix(ctx.at(sympy.Matrix(self.matrix)))
+        c = ctx.at(self.factor)
+        conds = [_cond("M is symmetric", M == M.T, "M ≠ Mᵀ")]
+        conds.append(_cond(f"the term is ({self.factor})·uᵀMu", ctx.zero(ctx.definitions(c) * (u.T * M * u)[0]
+                                                                          - ctx.at(term)), "it is not"))
+        syms = [m.symbol for m in ctx.measures.values()]
+        cm = _constant_and_monomial(c, syms)
+        sign = None if cm is None else _sign(cm[0])
+        if sign is None:
+            conds.append(_cond("the factor's sign is known", None, f"{c}"))
+            return Application(self.name, None, tuple(conds))
+        m = ctx.at(self.eigenvalue)
+        want_max = (direction == "upper") == (sign > 0)
+        n = M.shape[0]
+        D = m * sympy.eye(n) - M if want_max else M - m * sympy.eye(n)
+        res = matrix_positive_definite(D, name="D", semidefinite=True)
+        text = f"{m}·I − M ⪰ 0 (the eigenvalue bound)" if want_max else f"M − {m}·I ⪰ 0 (the eigenvalue bound)"
+        conds.append(Condition(text, res.status if res.status.is_proof else
+                               (Status.FAILED if res.status is Status.FAILED else Status.UNDECIDED),
+                               res.detail if not res.status.is_proof else ""))
+        ns = ctx.at(self.norm_squared)
+        conds.append(_cond(f"‖u‖² = {ns}", ctx.zero(ctx.definitions(ns) - (u.T * u)[0]),
+                           "not an identity on the state manifold"))
+        return Application(self.name, sympy.expand(c * m * ns), tuple(conds))
+
+
+@dataclasses.dataclass(frozen=True)
+class CauchySchwarz(Rule):
+    """|c·uᵀMv| ≤ |c|·κ·‖u‖·‖v‖ with κ ≥ ‖M‖ (κ ≥ 0 and κ²I − MᵀM ⪰ 0, exact).
+
+    ``norms`` are the :class:`Norm` trees of u and v; ``matrix`` defaults to I
+    (κ = 1).  For ``direction="lower"`` the bound is −|c|κ‖u‖‖v‖.
+    """
+
+    u: object
+    v: object
+    norms: tuple
+    matrix: object = None
+    factor: object = 1
+    operator_norm: object = None
+    name = "Cauchy–Schwarz with an operator norm"
+
+    def apply(self, term, direction, ctx):
+        u = sympy.Matrix(ctx.at(sympy.Matrix(as_column(self.u))))
+        v = sympy.Matrix(ctx.at(sympy.Matrix(as_column(self.v))))
+        n = u.shape[0]
+        M = sympy.eye(n) if self.matrix is None else sympy.Matrix(ctx.at(sympy.Matrix(self.matrix)))
+        c = ctx.at(self.factor)
+        conds = [_cond(f"the term is ({self.factor})·uᵀMv",
+                       ctx.zero(ctx.definitions(c) * (u.T * M * v)[0] - ctx.at(term)), "it is not")]
+        kappa = sympy.S.One if self.operator_norm is None and self.matrix is None else ctx.at(self.operator_norm)
+        if kappa is None:
+            return Application(self.name, None, tuple(conds) + (_cond("an operator norm κ is given", False),))
+        if self.matrix is not None:
+            res = matrix_positive_definite(kappa**2 * sympy.eye(M.shape[1]) - M.T * M, name="κ²I − MᵀM",
+                                           semidefinite=True)
+            conds.append(_cond(f"κ = {kappa} ≥ 0", _sign(kappa) == 1))
+            conds.append(Condition(f"κ = {kappa} ≥ ‖M‖ (κ²I − MᵀM ⪰ 0)", res.status if res.status.is_proof else
+                                   (Status.FAILED if res.status is Status.FAILED else Status.UNDECIDED),
+                                   "" if res.status.is_proof else f"the operator norm is larger: {res.detail}"))
+        bu, cu = _resolve_norm(self.norms[0], u, ctx)
+        bv, cv = _resolve_norm(self.norms[1], v, ctx)
+        conds += cu + cv
+        syms = [m.symbol for m in ctx.measures.values()]
+        cm = _constant_and_monomial(c, syms)
+        if cm is None or _sign(cm[0]) is None:
+            conds.append(_cond("the factor is a constant of known sign times measures", None, f"{c}"))
+            return Application(self.name, None, tuple(conds))
+        absc = abs(cm[0]) if cm[0].is_number else (cm[0] if _sign(cm[0]) == 1 else -cm[0])
+        if bu is None or bv is None:
+            return Application(self.name, None, tuple(conds))
+        bound = sympy.expand(absc * cm[1] * kappa * bu * bv)
+        return Application(self.name, bound if direction == "upper" else -bound, tuple(conds))
+
+
+@dataclasses.dataclass(frozen=True)
+class WindowWeight(Rule):
+    """c·∫_{t−h}^t g(ξ)‖v(ξ)‖^k dξ between c·(min g)·m and c·(max g)·m (m the window measure).
+
+    With ``holder=(p, q)``: ∫ g‖v‖^k ≤ (∫ g^q)^{1/q} (∫‖v‖^{kp})^{1/p} = (∫g^q)^{1/q}·m^k
+    (upper only).  ``weight`` is g (affine in ξ), ``factor`` c a constant of known sign.
+    """
+
+    measure: str
+    power: object
+    weight: object = 1
+    factor: object = 1
+    holder: tuple | None = None
+    name = "bound on a window weight"
+
+    def apply(self, term, direction, ctx):
+        m = ctx.measure(self.measure)
+        c = ctx.at(self.factor)
+        k = ctx.at(self.power)
+        g = ctx.at(self.weight)
+        I = sympy.Integral(g * m.pointwise() ** k, (xi, t - ctx.at(m.window), t))
+        conds = [_cond(f"the term is ({self.factor})·∫ g·‖v(ξ)‖^{k} with g = {self.weight}",
+                       ctx.zero(c * I - ctx.at(term)), "it is not")]
+        sc = _sign(c)
+        if sc is None:
+            return Application(self.name, None, tuple(conds) + (_cond("the factor's sign is known", None, f"{c}"),))
+        lower = (direction == "lower") == (sc > 0)
+        if lower and self.holder is not None:
+            return Application(self.name, None, tuple(conds) + (_cond("Hölder gives upper bounds only", False),))
+        fac, wconds = _window_factor(g, t - ctx.at(m.window), t, m, k, self.holder, ctx, lower=lower)
+        conds += wconds
+        if fac is None:
+            return Application(self.name, None, tuple(conds))
+        factor, mpow = fac
+        name = self.name if self.holder is None else "Hölder on the window"
+        return Application(name, sympy.expand(c * factor * m.symbol ** mpow), tuple(conds))
+
+
+@dataclasses.dataclass(frozen=True)
+class Young(Rule):
+    """c·x·y ≤ c(ε x^p/p + ε^{−q/p} y^q/q) for x, y ≥ 0, c ≥ 0, ε > 0, 1/p + 1/q = 1.
+
+    Applied after another rule (``then=``): it rewrites that rule's bound c·x·y.
+    """
+
+    x: object
+    y: object
+    p: object = 2
+    q: object = 2
+    eps: object = 1
+    name = "Young's inequality with a parameter"
+
+    def rewrite(self, previous, ctx) -> Application:
+        x, y = ctx.at(self.x), ctx.at(self.y)
+        p, q, eps = (ctx.at(v) for v in (self.p, self.q, self.eps))
+        c = sympy.simplify(previous / (x * y))
+        conds = [_cond(f"the bound is c·({self.x})·({self.y}) with c constant",
+                       not (c.free_symbols & {m.symbol for m in ctx.measures.values()}), f"c = {c}"),
+                 _cond(f"c = {c} ≥ 0", _sign(c) == 1 or None),
+                 _cond(f"p = {p}, q = {q} conjugate (1/p + 1/q = 1)",
+                       bool(sympy.simplify(1 / p + 1 / q - 1) == 0) and bool(p > 1),
+                       f"1/p + 1/q = {sympy.simplify(1 / p + 1 / q)}"),
+                 _cond(f"ε = {eps} > 0", bool(eps.is_positive) or None),
+                 _cond("x, y ≥ 0", nonnegative(x) and nonnegative(y))]
+        bound = sympy.expand(c * (eps * x**p / p + eps ** (-q / p) * y**q / q))
+        return Application(self.name, bound, tuple(conds))
+
+    def apply(self, term, direction, ctx):
+        return self.rewrite(ctx.at(term), ctx)
+
+
+@dataclasses.dataclass(frozen=True)
+class Template(Rule):
+    """term ≤ κ·Π m_i^{k_i} with κ = sup of term/Π m_i^{k_i} over a chart of the region (certified).
+
+    The ratio is derived from the term, not retyped: every unit state s with a norm
+    measure ‖s(t) − r‖ is written s = r + E·u(ρ, ψ) on the cap ρ ≤ ``rho_max`` around r
+    (E = 2 sin(ρ/2), u the unit direction of s − r), every other measured vector v as
+    W·v̂(θ, φ); the ratio must be free of W after division (homogeneity, checked) and
+    its supremum is certified with arb over the chart's box.  Side condition: the
+    region lies inside the chart (2 sin(ρ_max/2) ≥ the region's bound on ‖s − r‖).
+    ``name`` is the constant's name in bounds; for ``direction="lower"`` κ is the sup of
+    −term/… and the bound −κ·(monomial).
+    """
+
+    constant: str
+    exponents: Mapping
+    rho_max: object = sympy.Rational(1, 2)
+    text: str = ""
+    name = "template constant (supremum over a chart, certified)"
+
+    def ratio(self, term, direction, ctx):
+        """(expression in chart variables, box) of the ratio whose supremum is κ."""
+        from ..charts import unit_vector_angles, unit_vector_near
+
+        e = ctx.at(term) if direction == "upper" else -ctx.at(term)
+        rep, box, back, scales = {}, {}, {}, []
+        den = sympy.S.One
+        for k, (name, power) in enumerate(self.exponents.items()):
+            m = ctx.measure(name)
+            if m.kind != "norm":
+                raise InputError(f"Template {self.constant}: measure {name} must be a norm at t, got {m.kind}")
+            states = {ctx.system.state_functions()[a.func][0] for a in m.vector.atoms(AppliedUndef)}
+            if len(states) != 1:
+                raise InputError(f"Template {self.constant}: measure {name} must measure one state")
+            (state,) = states
+            ref = sympy.Matrix(ctx.at(sympy.Matrix(state(t)) - sympy.Matrix(m.vector)))
+            E = sympy.Dummy(f"E{k}", nonnegative=True)
+            scales.append(E)
+            if state.unit:
+                rho, psi = sympy.Dummy(f"rho{k}", real=True), sympy.Dummy(f"psi{k}", real=True)
+                cap = unit_vector_near(ref, rho_max=ctx.at(self.rho_max), rho=rho, psi=psi)
+                n = sympy.cos(psi) * cap.extras["e1"] + sympy.sin(psi) * cap.extras["e2"]
+                value = ref + E * (-sympy.sin(rho / 2) * ref + sympy.cos(rho / 2) * n)
+                box.update(cap.region)
+                back[E] = 2 * sympy.sin(rho / 2)
+            else:
+                th, ph = sympy.Dummy(f"theta{k}", real=True), sympy.Dummy(f"phi{k}", real=True)
+                ch = unit_vector_angles(th, ph)
+                value = ref + E * ch.value
+                box.update(ch.region)
+            for f, x in zip(state.functions, value):
+                rep[f(t)] = x
+            den *= E ** power
+        q = sympy.expand(sympy.expand(e.xreplace(rep)) / den)
+        for E in scales:
+            for tm in sympy.Add.make_args(q):
+                if tm.as_powers_dict().get(E, 0) < 0:
+                    raise _NotHomogeneous("the term is not divisible by the stated monomial of measures")
+            if E not in back and q.has(E):
+                raise _NotHomogeneous("the term is not homogeneous of the stated degree in a vector measure "
+                                      "(a power of its norm remains after division)")
+        if q.atoms(AppliedUndef) or q.has(sympy.Integral):
+            raise _NotHomogeneous("the term involves states or histories that no measure of the template charts")
+        return q.xreplace(back), box
+
+    def apply(self, term, direction, ctx):
+        from ..bounds import sup_bound
+        from ...options import Accuracy, Budget
+
+        conds = []
+        # the region inside the chart
+        rho = ctx.at(self.rho_max)
+        chart_e = 2 * sympy.sin(rho / 2)
+        for name in self.exponents:
+            m = ctx.measure(name)
+            if ctx.region is None:
+                conds.append(_cond("a region is stated", False, "the chart needs the region's bounds"))
+                break
+            b = ctx.region.bound_of(m, ctx.sub)
+            state = {ctx.system.state_functions()[a.func][0] for a in m.vector.atoms(AppliedUndef)}
+            if any(s_.unit for s_ in state):
+                if b is None:
+                    conds.append(_cond(f"the region bounds {m.text}", False, "no bound"))
+                    continue
+                from ..intervals import enclose
+
+                lo = enclose(chart_e - b)
+                conds.append(_cond(f"the region ({m.text} ≤ {b}) lies inside the chart (‖s − r‖ ≤ 2 sin(ρ_max/2)"
+                                   f" = {float(chart_e):.6g})", True if lo > 0 or (chart_e - b) == 0 else
+                                   (False if lo < 0 and (lo + lo.rad() * 0) < 0 and not lo.contains(0) else None),
+                                   f"the region's bound {b} exceeds the chart's {float(chart_e):.6g}",
+                                   certified=True))
+        try:
+            q, box = self.ratio(term, direction, ctx)
+        except _NotHomogeneous as exc:
+            return Application(self.name, None, tuple(conds) + (_cond("the ratio is well defined", False, str(exc)),))
+        if any(not c.status.is_proof for c in conds):
+            return Application(self.name, None, tuple(conds))
+        seconds = None if ctx.budget is None else ctx.budget
+        res = sup_bound(q, box, accuracy=TEMPLATE_ACCURACY, budget=Budget(seconds=seconds or 30.0,
+                                                                         boxes=TEMPLATE_BOXES),
+                        enclosure=TEMPLATE_ENCLOSURE)
+        proved = res.certified is not None and res.certified < float("inf")
+        kappa = sympy.Rational(res.certified) if proved else None
+        conds.append(_cond(f"κ = sup = {res.certified:.6g} certified (estimate {res.estimate:.6g}, gap "
+                           f"{res.gap:.2g}, {res.boxes} boxes)" if proved else "κ certified", proved or None,
+                           "no finite certified bound in the budget", certified=True))
+        if not proved:
+            return Application(self.name, None, tuple(conds))
+        mono = sympy.Mul(*[ctx.measure(n).symbol ** p for n, p in self.exponents.items()])
+        bound = kappa * mono if direction == "upper" else -kappa * mono
+        info = {"estimate": res.estimate, "certified": res.certified, "gap": res.gap, "boxes": res.boxes,
+                "seconds": res.seconds, "maximiser": {str(k): v for k, v in (res.maximiser or {}).items()}
+                if isinstance(res.maximiser, dict) else None}
+        return Application(self.name, bound, tuple(conds), ((self.constant, res.certified, info),))
+
+
+class _NotHomogeneous(Exception):
+    pass
+
+
+def _accuracy():
+    from ...options import Accuracy
+
+    return Accuracy(rel_gap=5e-3)
+
+
+TEMPLATE_ACCURACY = _accuracy()
