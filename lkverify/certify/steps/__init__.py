@@ -15,6 +15,15 @@
   with rhs on the region.
 """
 
+from .chain import ChainResult, Decay, TermBound, TermResult, TermwiseBound
+from .measures import Measure, Region, norm_measure, sup_norm, window_integral_measure, window_norm
 from .quadratic import BoundClaim, QuadraticForms, StepResult, quadratic_upper_bound
+from .rules import (CauchySchwarz, Context, Equal, Nonpositive, Printed, Rayleigh, Template, WindowWeight, Young,
+                    crossed, integral_of, measured, scaled, unit)
+from .witnesses import UnsupportedClaim, Witness, search_witness
 
-__all__ = ["BoundClaim", "QuadraticForms", "StepResult", "quadratic_upper_bound"]
+__all__ = ["BoundClaim", "CauchySchwarz", "ChainResult", "Context", "Decay", "Equal", "Measure", "Nonpositive",
+           "Printed", "QuadraticForms", "Rayleigh", "Region", "StepResult", "Template", "TermBound", "TermResult",
+           "TermwiseBound", "UnsupportedClaim", "WindowWeight", "Witness", "Young", "crossed", "integral_of",
+           "measured", "norm_measure", "quadratic_upper_bound", "scaled", "search_witness", "sup_norm", "unit",
+           "window_integral_measure", "window_norm"]

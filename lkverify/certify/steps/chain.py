@@ -31,6 +31,7 @@ from collections.abc import Mapping, Sequence
 
 import sympy
 
+from ...declare.symbols import t as _t
 from ...errors import InputError
 from ...report.results import Kind, Result
 from ...status import Status
@@ -166,6 +167,11 @@ class TermwiseBound:
         at the checked values.
     witness_seconds : float
         Budget of the witness search of one term that the rule does not prove.
+    part : tuple of str, optional
+        Only these labelled terms form lhs (a step about part of V̇, as papers print them).
+    exists : tuple of Symbol
+        Constants the step only claims to exist ("c7 > 0"): a witness must refute the
+        step for every nonnegative value of them.
     """
 
     name: str
@@ -181,6 +187,8 @@ class TermwiseBound:
     role: str | None = None
     definitions: Mapping = dataclasses.field(default_factory=dict)
     witness_seconds: float = 5.0
+    part: tuple | None = None
+    exists: tuple = ()
 
     def __post_init__(self):
         problems = []
@@ -209,7 +217,14 @@ class TermwiseBound:
 
     def lhs_terms(self) -> list:
         """The labelled terms of lhs (the functional's, or the derivation's structured V̇)."""
-        return list(self.functional.terms if self.lhs == "V" else self.derivation.terms)
+        terms = list(self.functional.terms if self.lhs == "V" else self.derivation.terms)
+        if self.part is not None:
+            unknown = [p for p in self.part if p not in {t_.text for t_ in terms}]
+            if unknown:
+                raise InputError(f"bound step {self.name}: part: no term is labelled {unknown[0]!r}; labels: "
+                                 + ", ".join(t_.text for t_ in terms))
+            terms = [t_ for t_ in terms if t_.text in self.part]
+        return terms
 
     def with_bounds(self, **changes) -> "TermwiseBound":
         """A copy with fields replaced (for mutation tests: ``step.with_bounds(region=...)``)."""
@@ -317,11 +332,20 @@ class TermwiseBound:
             return TermResult(tb.terms, statement, status, detail, rule, tuple(apps), bound=bound)
         witness = None
         if search:
-            witness = self._witness(expr, stated, ctx)
+            from ...declare.terms import Term
+
+            sign = 1 if direction == "upper" else -1
+            labelled = [Term(sign * ctx.at(term.expr), text=term.text) for label in tb.terms
+                        for term in self.lhs_terms() if term.text == label]
+            witness = self._witness(labelled, stated, ctx)
         if witness is not None:
+            from .rules import Printed
+
+            terms = ", ".join(f"{k} = {v:.4g}" for k, v in witness.terms.items() if isinstance(v, float))
+            why = "" if isinstance(tb.rule, Printed) else f"; the rule's check: {detail}"
             return TermResult(tb.terms, statement, Status.FAILED,
-                              f"refuted: {witness.text()}; the rule's check: {detail}", rule, tuple(apps), witness,
-                              bound)
+                              f"refuted: {witness.text()}" + (f"; at the witness: {terms}" if terms else "") + why,
+                              rule, tuple(apps), witness, bound)
         return TermResult(tb.terms, statement, Status.UNDECIDED if status is not Status.FAILED else Status.UNDECIDED,
                           f"not proved ({detail}); no witness found in {self.witness_seconds:g} s", rule,
                           tuple(apps), None, bound)
@@ -331,10 +355,17 @@ class TermwiseBound:
             from .witnesses import search_witness
         except ImportError:  # pragma: no cover - the module ships with the package
             return None
-        lhs, rhs = (expr, stated) if self.direction == "upper" else (-expr, -stated)
+        lhs = expr  # labelled terms, already signed for an upper bound
+        rhs = ctx.at(stated if self.direction == "upper" else -stated)
+        measure_syms = {m.symbol for m in self.measures}
+        exists = {sympy.Symbol(str(c)) if isinstance(c, str) else c for c in self.exists}
+        lhs_syms = set().union(*[sympy.sympify(term.expr).free_symbols for term in lhs]) if lhs else set()
+        free = (lhs_syms | sympy.sympify(rhs).free_symbols) - measure_syms - exists - {_t}
+        nonneg = tuple(s_ for s_ in free if s_.is_nonnegative)  # free positive parameters: every value
         try:
             return search_witness(lhs, rhs, system=self.system, values=ctx.values, measures=list(self.measures),
-                                  region=self.region, budget=self.witness_seconds)
+                                  region=self.region, exists=tuple(exists), nonnegative=nonneg,
+                                  budget=self.witness_seconds)
         except InputError:
             return None
 
@@ -395,15 +426,35 @@ class Decay:
                           {k: measures[v].symbol for k, v in self.outputs.items()}, self.rate_name,
                           derivation="the checked bound steps V ≥ L, V ≤ U, V̇ ≤ W")
 
-    def certify(self, steps: Mapping, values: Mapping, *, budget=None, progress=None):
-        """(results, status, detail): the certified decay of the checked steps, or why not."""
-        from ..decay import certify_model
+    def certify(self, steps: Mapping, values: Mapping, *, budget=None, progress=None, claimed: Mapping | None = None,
+                region: Region | None = None):
+        """(results, status, detail): the certified decay of the checked steps, or why not.
 
+        ``claimed``: the constants a proof states (``c_tilde``, ``delta_tilde`` and ``l_<measure>``)
+        are checked as given instead of estimated; ``region`` replaces the V̇ step's region.
+        """
+        from ...errors import UnsupportedInput
+        from ..decay import certify_decay, certify_model
+
+        if region is not None:
+            role, (step, res) = "vdot", steps["vdot"]
+            steps = {**steps, role: (dataclasses.replace(step, region=region), res)}
         model = self.model(steps, values)
         bad = [str(v) for v in model.region.values() if not sympy.sympify(v).is_number]
         if bad:
             return [], Status.UNDECIDED, f"the region's bounds have no value ({', '.join(bad)}); set them"
-        cert = certify_model(model, budget=budget, progress=progress)
+        try:
+            if claimed is None:
+                cert = certify_model(model, budget=budget, progress=progress)
+            else:
+                from ...options import Budget
+
+                ls = {v: sympy.Rational(claimed[f"l_{v}"]) for v in model.outputs.values()}
+                cert = certify_decay(model, c_tilde=sympy.Rational(claimed["c_tilde"]), lower_coefficients=ls,
+                                     delta_tilde=sympy.Rational(claimed["delta_tilde"]),
+                                     budget=Budget.of(budget if budget is not None else 60.0), progress=progress)
+        except UnsupportedInput as exc:
+            return [], Status.UNDECIDED, str(exc)
         if cert is None:
             return [], Status.UNDECIDED, (
                 "the estimator finds no admissible constants: V̇ ≥ 0 is sampled on the region or the model's "

@@ -57,7 +57,7 @@ from ...status import Status
 from ..matrices import matrix_positive_definite
 from .measures import Measure, Region
 
-__all__ = ["Application", "CauchySchwarz", "Context", "Equal", "Nonpositive", "Norm", "Rayleigh", "Rule",
+__all__ = ["Application", "CauchySchwarz", "Context", "Equal", "Nonpositive", "Norm", "Printed", "Rayleigh", "Rule",
            "Template", "WindowWeight", "Young", "crossed", "integral_of", "measured", "nonnegative", "scaled", "unit"]
 
 
@@ -442,6 +442,23 @@ class Rule:
 
     def apply(self, term, direction: str, ctx: Context) -> Application:  # pragma: no cover - interface
         raise NotImplementedError
+
+
+@dataclasses.dataclass(frozen=True)
+class Printed(Rule):
+    """The step as the paper prints it, with no checkable rule ("there exist constants c_k …").
+
+    It never proves anything: the step is only decided by an adversarial witness
+    (``failed``) or stays ``undecided``.
+    """
+
+    reference: str = ""
+    name = "as printed (no checkable rule named)"
+
+    def apply(self, term, direction, ctx):
+        where = f" ({self.reference})" if self.reference else ""
+        return Application(self.name, None, (Condition(f"a rule for the printed step{where}", Status.UNDECIDED,
+                                                       "the paper names none; only a witness can decide it"),))
 
 
 @dataclasses.dataclass(frozen=True)

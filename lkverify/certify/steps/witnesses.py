@@ -1,0 +1,1286 @@
+"""Adversarial witnesses: states and histories that refute a bound ``lhs ≤ rhs``, rechecked in interval arithmetic.
+
+A bound step claims ``lhs ≤ rhs`` for every admissible state and history in a region.
+:func:`search_witness` looks for a state and a history where ``lhs − rhs > 0`` and
+reports one only after the violation has been *proved* at an exact point: its
+parameters are rationals, the point is substituted into the exact expression and the
+value enclosed with :func:`~lkverify.certify.intervals.convert.enclose` (arb).  A float
+that merely looks positive is never a refutation.
+
+The witness family
+------------------
+The claim is written in the state functions at ``t`` (``s_x(t)``), at delayed times
+``t − c`` (c a constant once the parameters have values) and under window integrals
+``∫_{t−h}^{t−h'} F(ξ, t, x(ξ), x(t), …) dξ``; the right-hand side also in
+:class:`~lkverify.certify.steps.measures.Measure` symbols.  The search ranges over
+
+* the value of every state at ``t`` and at every delayed time that appears — these are
+  independent of each other and of the window integrals: a continuous history can take
+  any values at finitely many points while changing every integral arbitrarily little;
+* a **piecewise-constant history** on the window ``[t − H, t]`` (H the longest window)
+  with m equal pieces (``m`` in ``pieces``; the ends of shorter windows are extra
+  break points, so no piece straddles a window end), for every state that appears
+  under an integral or in a window measure.
+
+On such a history every window integral is an exact finite sum: the state values are
+constant on a piece and the integrand's explicit ξ-dependence (weights such as
+``ξ + τ − t``) is integrated exactly — by a closed Newton–Cotes rule of the weight's
+degree, which is exact for polynomials (the weight is polynomial in ξ for every claim
+of the papers; other weights go through ``sympy.integrate``).  Then ``t = 0`` is set
+(the claims are autonomous; an explicit t that does not cancel raises
+:class:`~lkverify.errors.InputError`: time-varying claims are not supported yet).
+
+Why a strict violation at a piecewise-constant history refutes the claim: let
+``x̂`` be the piecewise-constant history with the chosen point values.  Join
+consecutive pieces, and each point value to the piece around its instant (there and
+back), by paths traversed in time ε: minor great-circle arcs for unit vectors, segments
+for vectors.  Along a segment ‖x − c‖ is at most its larger end value (convexity); along
+a minor arc ‖s − c‖ is too while both ends are within √2 of c (caps smaller than a
+hemisphere are geodesically convex).  So the continuous history obtained has the same
+point values, stays in the region (every region cap of the papers is far smaller than a
+hemisphere), and its sups of ‖x(ξ) − c‖ are the maxima over the pieces and point values
+that the witness reports.  It differs from ``x̂`` on a set of measure O(ε) where both
+are bounded, so every window integral and window measure changes by O(ε) (the
+integrands are continuous on the compact admissible set).  The violation ``lhs − rhs``
+is a continuous function of these finitely many numbers, so a violation > 0 at ``x̂``
+persists for ε small enough: the claim fails at a continuous, piecewise-smooth
+admissible history.  (For a region cap of radius ≥ √2 the joins can be taken inside the
+sub-cap of the larger end value — caps are path-connected — but a ``sup`` measure about
+another centre is then only bounded below by the reported maximum.)
+
+Unit vectors (``state.unit``, dimension 3) are parametrised by angles, so every point
+is exactly unit: in a cap around ``r`` (a region bound of kind ``sup`` on ``s(ξ) − r``
+or ``norm`` on ``s(t) − r``) by ``s = cos ρ r + sin ρ (cos ψ e1 + sin ψ e2)`` with (e1,
+e2) the exact orthonormal basis of r⊥ of :func:`~lkverify.certify.charts.unit_vector_near`
+and ``ρ = ρmax sin² u``, ``2 sin(ρmax/2) = d``; elsewhere by the same chart around
+(0, 0, 1) with ρmax = π.  A vector with a region bound ``‖ω − c‖ ≤ δ`` is
+``c + δ sin²(u) · (a unit direction in angles)``; an unbounded vector has free
+components.  The optimisation variables are thus unconstrained and map smoothly into
+the admissible set; the rational recheck point is admissible by construction.
+
+Constants that are "some c ≥ 0" (``exists``) or free nonnegative symbols
+(``nonnegative``, e.g. λ) must enter affinely: ``lhs − rhs = A + Σ B_k c_k``.  The claim
+is refuted for every value of them when ``A > 0`` and every ``B_k ≥ 0`` (rigorously);
+the search maximises ``min(A, B_1, …)`` and :attr:`Witness.violation` encloses A, the
+value at all c_k = 0 (and the infimum over them).
+
+The search builds the exact parametric expression once per piece count, lambdifies it
+(vectorised over points, so a finite-difference gradient or a line search costs one
+call), and runs a small BFGS ascent from ``starts`` random starts (``numpy.random.default_rng(seed)``), every second
+one a *rotation start*: the history pieces along a rotation of the value at t in a
+random plane (for unit vectors often the plane through the centre r, the papers'
+counterexample), with an angle profile of one or several modes.  Piece counts are
+tried in order and the first that yields a rechecked witness wins.  Candidates whose
+float violation is below about 10⁻¹³ of the size of the terms are rounding noise and
+are not rechecked, so violations that small are not found.
+
+Errors: bad arguments raise :class:`~lkverify.errors.InputError` ("expected / got /
+how to fix").  Claims outside the witness family — frames (``state.frame``), unit
+vectors of dimension ≠ 3, nested or merged integrals, memory integrals, states at future
+times or at shifted ξ under an integral, derivatives of states, region bounds of other
+forms — raise :class:`UnsupportedClaim`, which is both an
+:class:`~lkverify.errors.UnsupportedInput` and an :class:`~lkverify.errors.InputError`
+(a caller may catch either and report ``undecided``).  ``None`` means: searched, nothing
+rechecked (the claim may well be true).
+
+Examples
+--------
+>>> import sympy
+>>> from lkverify import Equation, Parameters, System, Term, Vector, t, window_integral, xi
+>>> from lkverify.certify.steps.measures import norm_measure, window_integral_measure
+>>> P = Parameters(); tau = P.delay("tau", default=1)
+>>> x = Vector("x", 1)
+>>> sys_ = System([Equation(x, [Term(-x(t - tau)[0])])], parameters=P)
+>>> e, I = norm_measure("e", x(t)), window_integral_measure("I", x(xi), p=2, window=tau)
+>>> lhs = x(t)[0] * window_integral(x(xi)[0], tau)     # x(t)∫x ≤ (e² + I)/2: Young and Cauchy–Schwarz
+>>> search_witness(lhs, (e.symbol ** 2 + I.symbol) / 2, system=sys_, values=P.resolve({}),
+...                measures=[e, I], starts=4) is None
+True
+>>> w = search_witness(lhs, (e.symbol ** 2 + I.symbol) / 4, system=sys_, values=P.resolve({}),
+...                    measures=[e, I], starts=4)
+>>> w.violation[0] > 0
+True
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import math
+import numbers
+from collections.abc import Mapping
+
+import numpy as np
+import sympy
+from sympy.core.function import AppliedUndef
+
+from ...declare.functional import outer_integrals, split_outer
+from ...declare.parameters import apply_substitution
+from ...declare.symbols import t, xi
+from ...declare.system import System
+from ...declare.terms import Term
+from ...errors import InputError, UnsupportedInput
+from ...options import Budget, Deadline
+from ..intervals.convert import enclose
+from ..intervals.rounding import float_down, float_up
+from .measures import Measure, Region
+
+__all__ = ["UnsupportedClaim", "Witness", "search_witness"]
+
+#: rational rounding of the optimiser's point for the exact recheck
+_DENOMINATOR = 10 ** 6
+#: how many of the best candidates of one piece count are rechecked
+_RECHECKS = 6
+#: arb precision of the recheck (bits)
+_PREC = 128
+
+
+class UnsupportedClaim(UnsupportedInput, InputError):
+    """A claim outside the witness family (frames, nested integrals, …): nothing was refuted.
+
+    It is both an :class:`~lkverify.errors.UnsupportedInput` and an
+    :class:`~lkverify.errors.InputError`.
+    """
+
+
+# ---------------------------------------------------------------------------------------------
+# the result
+# ---------------------------------------------------------------------------------------------
+
+@dataclasses.dataclass(frozen=True)
+class Witness:
+    """A state and a piecewise-constant history at which ``lhs − rhs > 0`` is proved.
+
+    Attributes
+    ----------
+    violation : tuple of float
+        ``(lo, hi)``, an outward-rounded enclosure of ``lhs − rhs`` at the exact witness
+        (with every ``exists`` / ``nonnegative`` constant at 0); ``lo > 0``.
+    state : dict
+        ``"s_x(t)"``, ``"s_x(t - 1)"`` … → value (the state at t and at delayed times).
+    history : dict
+        State name → one list of component values per piece, oldest piece first.
+    measures : dict
+        Measure name → value at the witness.
+    terms : dict
+        Term label → value (``"lhs"`` for a plain expression), ``"rhs"`` → value; a term
+        that depends on a constant c also has ``"label [coefficient of c]"``.
+    exact : dict
+        What reproduces the witness exactly: ``"t"``, ``"pieces"``, ``"breakpoints"``, the
+        rational chart parameters and the exact vectors (strings).
+    coefficients : dict
+        Constant name → ``(lo, hi)`` enclosure of its coefficient ``B_k ≥ 0`` in
+        ``lhs − rhs`` (empty without ``exists`` / ``nonnegative``).
+
+    Examples
+    --------
+    >>> w = Witness((0.5, 0.5), {"x_1(t)": 1.0}, {}, {}, {"lhs": 1.0, "rhs": 0.5}, {"t": "0"})
+    >>> w.text()
+    'x(t) = (1); lhs − rhs ∈ [0.5, 0.5] > 0'
+    """
+
+    violation: tuple
+    state: dict
+    history: dict
+    measures: dict
+    terms: dict
+    exact: dict
+    coefficients: dict = dataclasses.field(default_factory=dict)
+
+    def to_json(self) -> dict:
+        """A JSON-serialisable dict (lists for tuples, floats and strings only)."""
+        def clean(x):
+            if isinstance(x, Mapping):
+                return {str(k): clean(v) for k, v in x.items()}
+            if isinstance(x, (list, tuple)):
+                return [clean(v) for v in x]
+            if isinstance(x, (bool, str)) or x is None:
+                return x
+            if isinstance(x, numbers.Integral):
+                return int(x)
+            if isinstance(x, numbers.Real):
+                return float(x)
+            return str(x)
+
+        return clean({"violation": self.violation, "state": self.state, "history": self.history,
+                      "measures": self.measures, "terms": self.terms, "exact": self.exact,
+                      "coefficients": self.coefficients})
+
+    def text(self) -> str:
+        """One line: the state values, the history, the proved violation."""
+        groups: dict = {}
+        for key, value in self.state.items():
+            name, _, when = key.partition("(")
+            base = name.rsplit("_", 1)[0]
+            groups.setdefault((base, when.rstrip(")")), []).append(value)
+        texts = self.exact.get("texts", {})
+        parts = [f"{texts.get(base, base)}({when}) = ({', '.join(f'{v:.4g}' for v in vals)})"
+                 for (base, when), vals in groups.items()]
+        if self.history:
+            n = len(next(iter(self.history.values())))
+            window = self.exact.get("window", "")
+            parts.append(f"history: {n} piece{'s' if n != 1 else ''}" + (f" on [t − {window}, t]" if window else "")
+                         + " (" + "; ".join(f"{texts.get(k, k)}: " + ", ".join(
+                             "(" + ", ".join(f"{c:.3g}" for c in piece) + ")" for piece in v)
+                             for k, v in self.history.items()) + ")")
+        line = ", ".join(parts)
+        lo, hi = self.violation
+        line += ("; " if line else "") + f"lhs − rhs ∈ [{lo:.6g}, {hi:.6g}] > 0"
+        if self.coefficients:
+            line += " for every " + ", ".join(f"{c} ≥ 0" for c in self.coefficients)
+        return line
+
+
+# ---------------------------------------------------------------------------------------------
+# charts: unconstrained parameters → admissible values
+# ---------------------------------------------------------------------------------------------
+
+class _Chart:
+    """A smooth map from free parameters onto the admissible set of one slot.
+
+    kinds: ``cap`` (unit 3-vector at angle ≤ top from a unit centre), ``ball`` (‖v − c‖ ≤ δ),
+    ``free`` (components), ``fixed`` (a bound 0: the centre itself).
+    """
+
+    def __init__(self, kind: str, dim: int, *, center=None, bound=None):
+        self.kind, self.dim = kind, dim
+        self.center = None if center is None else sympy.ImmutableMatrix(center)
+        self.bound = bound
+        if kind == "cap":
+            from ..charts import unit_vector_near
+
+            try:
+                if bound is None or bool(sympy.sympify(bound) >= 2):
+                    ch = unit_vector_near(self.center, rho_max=sympy.pi)
+                else:
+                    ch = unit_vector_near(self.center, distance_max=bound)
+            except InputError as exc:
+                raise UnsupportedClaim(f"a region bound on a unit vector: expected ‖s − r‖ ≤ d with r a "
+                                       f"constant unit vector, got centre {list(self.center)} ({exc}); bound "
+                                       f"s − r with a unit r") from exc
+            self.top = list(ch.region.values())[0][1]
+            self.e1, self.e2 = ch.extras["e1"], ch.extras["e2"]
+            self.nparams = 2
+            self._c = np.array([float(v) for v in self.center])
+            self._e1 = np.array([float(v) for v in self.e1])
+            self._e2 = np.array([float(v) for v in self.e2])
+            self._top = float(self.top)
+        elif kind == "ball":
+            self.nparams = dim
+            self._c = np.array([float(v) for v in self.center])
+            self._delta = float(bound)
+        elif kind == "free":
+            self.nparams = dim
+        elif kind == "fixed":
+            self.nparams = 0
+            self._c = np.array([float(v) for v in self.center])
+        else:  # pragma: no cover
+            raise AssertionError(kind)
+
+    def describe(self) -> str:
+        if self.kind == "cap":
+            return (f"cos(rho)·c + sin(rho)(cos(psi)·e1 + sin(psi)·e2), rho = {self.top}·sin(u)², "
+                    f"c = {list(self.center)}, e1 = {list(self.e1)}, e2 = {list(self.e2)}")
+        if self.kind == "ball":
+            return f"c + {self.bound}·sin(u)²·direction(angles), c = {list(self.center)}"
+        if self.kind == "fixed":
+            return f"the centre {list(self.center)}"
+        return "free components"
+
+    # exact (sympy) and numeric forms of the same formulas
+    def expr(self, p) -> list:
+        """The value (one expression per component) at parameters ``p`` (symbols or rationals)."""
+        if self.kind == "cap":
+            u, psi = p
+            rho = self.top * sympy.sin(u) ** 2
+            v = sympy.cos(rho) * self.center + sympy.sin(rho) * (sympy.cos(psi) * self.e1 + sympy.sin(psi) * self.e2)
+            return list(v)
+        if self.kind == "ball":
+            if self.dim == 1:
+                return [self.center[0] + self.bound * sympy.sin(p[0])]
+            radius = self.bound * sympy.sin(p[0]) ** 2
+            return [c + radius * d for c, d in zip(self.center, _direction(p[1:], sympy))]
+        if self.kind == "free":
+            return list(p)
+        return list(self.center)
+
+    def value(self, p: np.ndarray) -> np.ndarray:
+        """The numeric value at the parameters ``p``."""
+        if self.kind == "cap":
+            rho = self._top * math.sin(p[0]) ** 2
+            return math.cos(rho) * self._c + math.sin(rho) * (math.cos(p[1]) * self._e1 + math.sin(p[1]) * self._e2)
+        if self.kind == "ball":
+            if self.dim == 1:
+                return self._c + self._delta * math.sin(p[0])
+            return self._c + self._delta * math.sin(p[0]) ** 2 * np.array(_direction(p[1:], math))
+        if self.kind == "free":
+            return np.array(p, dtype=float)
+        return self._c.copy()
+
+    def inverse(self, v: np.ndarray) -> np.ndarray:
+        """Parameters whose value is ``v`` (projected onto the admissible set)."""
+        v = np.asarray(v, dtype=float)
+        if self.kind == "cap":
+            n = np.linalg.norm(v)
+            v = v / n if n > 0 else self._c
+            rho = math.acos(min(1.0, max(-1.0, float(v @ self._c))))
+            psi = math.atan2(float(v @ self._e2), float(v @ self._e1))
+            return np.array([math.asin(math.sqrt(min(1.0, rho / self._top))), psi])
+        if self.kind == "ball":
+            d = v - self._c
+            if self.dim == 1:
+                return np.array([math.asin(min(1.0, max(-1.0, float(d[0]) / self._delta)))])
+            rad = float(np.linalg.norm(d))
+            u = math.asin(math.sqrt(min(1.0, rad / self._delta)))
+            return np.concatenate([[u], _angles(d / rad if rad > 0 else np.eye(self.dim)[0])])
+        if self.kind == "free":
+            return v.copy()
+        return np.zeros(0)
+
+    def random(self, rng: np.random.Generator) -> np.ndarray:
+        if self.kind == "cap":
+            return np.array([rng.uniform(0, math.pi / 2), rng.uniform(0, 2 * math.pi)])
+        if self.kind == "ball":
+            if self.dim == 1:
+                return np.array([rng.uniform(-math.pi / 2, math.pi / 2)])
+            return np.concatenate([[rng.uniform(0, math.pi / 2)], _angles(_unit(rng, self.dim))])
+        if self.kind == "free":
+            return rng.normal(size=self.dim) * rng.choice([0.1, 1.0, 3.0])
+        return np.zeros(0)
+
+
+def _direction(a, lib) -> list:
+    """The unit vector of hyperspherical angles ``a`` (len n − 1) in R^n."""
+    n = len(a) + 1
+    out, prod = [], 1
+    for k in range(n - 1):
+        out.append(prod * lib.cos(a[k]))
+        prod = prod * lib.sin(a[k])
+    out.append(prod)
+    return out
+
+
+def _angles(d: np.ndarray) -> np.ndarray:
+    """Inverse of :func:`_direction` for a unit vector ``d``."""
+    n = len(d)
+    a = np.zeros(n - 1)
+    for k in range(n - 1):
+        a[k] = math.atan2(float(np.linalg.norm(d[k + 1:])), float(d[k]))
+    if n >= 2:
+        a[n - 2] = math.atan2(float(d[n - 1]), float(d[n - 2]))
+    return a
+
+
+def _unit(rng, n) -> np.ndarray:
+    v = rng.normal(size=n)
+    return v / (np.linalg.norm(v) or 1.0)
+
+
+def _plane_rotation(v, a, b, phi):
+    """``v`` rotated by ``phi`` in the plane of the orthonormal (a, b)."""
+    va, vb = float(v @ a), float(v @ b)
+    c, s = math.cos(phi), math.sin(phi)
+    return v - va * a - vb * b + (va * c - vb * s) * a + (va * s + vb * c) * b
+
+
+# ---------------------------------------------------------------------------------------------
+# the problem: the claim after substitution, its atoms and windows
+# ---------------------------------------------------------------------------------------------
+
+@dataclasses.dataclass
+class _Integral:
+    node: sympy.Integral
+    var: sympy.Symbol
+    h1: sympy.Expr          # lower limit t − h1
+    h2: sympy.Expr          # upper limit t − h2
+    inner: sympy.Expr
+    degree: int | None      # degree of the explicit ξ-dependence (None: not polynomial)
+
+
+@dataclasses.dataclass
+class _Constraint:
+    state: object
+    kind: str               # "norm" (at t) or "sup" (over [t − h, t])
+    window: sympy.Expr | None
+    center: sympy.ImmutableMatrix
+    bound: sympy.Expr
+
+
+@dataclasses.dataclass
+class _Slot:
+    state: object
+    where: tuple            # ("point", c) or ("piece", k)
+    z: tuple                # one symbol per component
+    chart: _Chart
+    start: int              # first index of the chart's parameters
+
+    @property
+    def label(self) -> str:
+        kind, c = self.where
+        if kind == "point":
+            return f"{self.state.name}(t)" if c == 0 else f"{self.state.name}(t - {c})"
+        return f"{self.state.name}[piece {c}]"
+
+
+def _sympify_scalar(expr, what: str) -> sympy.Expr:
+    if isinstance(expr, str):
+        raise InputError(f"{what}: expected a SymPy expression, got the string {expr!r}; build it with sympy")
+    if isinstance(expr, sympy.MatrixBase):
+        if expr.shape != (1, 1):
+            raise InputError(f"{what}: expected a scalar, got a {expr.shape[0]}x{expr.shape[1]} matrix; "
+                             f"take a component or a dot product")
+        expr = expr[0, 0]
+    try:
+        out = sympy.sympify(expr, strict=True)
+    except (sympy.SympifyError, TypeError) as exc:
+        raise InputError(f"{what}: expected a SymPy expression, got {type(expr).__name__} {expr!r}") from exc
+    if not isinstance(out, sympy.Expr):
+        raise InputError(f"{what}: expected a scalar SymPy expression, got {type(out).__name__}")
+    return out
+
+
+def _lhs_terms(lhs) -> list:
+    if isinstance(lhs, Term):
+        lhs = [lhs]
+    if isinstance(lhs, (list, tuple)):
+        if not lhs:
+            raise InputError("lhs: expected an expression or a non-empty sequence of Term, got an empty sequence")
+        out, seen = [], {}
+        for term in lhs:
+            if not isinstance(term, Term):
+                raise InputError(f"lhs: expected a sequence of lkverify.Term, got an item of type "
+                                 f"{type(term).__name__}; wrap each expression in Term(expr, text=...)")
+            label = term.text
+            if label in seen:
+                seen[label] += 1
+                label = f"{label} ({seen[term.text]})"
+            else:
+                seen[label] = 1
+            out.append((label, _sympify_scalar(term.expr, f"lhs term {term.text!r}")))
+        return out
+    return [("lhs", _sympify_scalar(lhs, "lhs"))]
+
+
+def _names(seq, what: str) -> list:
+    if isinstance(seq, (str, sympy.Symbol)):
+        seq = (seq,)
+    out = []
+    for c in seq:
+        if isinstance(c, sympy.Symbol):
+            out.append(c.name)
+        elif isinstance(c, str) and c.isidentifier():
+            out.append(c)
+        else:
+            raise InputError(f"{what}: expected sympy Symbols (or their names), got {c!r}")
+    return out
+
+
+def _number(x, what: str) -> sympy.Expr:
+    x = sympy.sympify(x)
+    if x.free_symbols:
+        raise InputError(f"{what}: expected a number once the parameters have values, got {x} (symbols "
+                         f"{sorted(map(str, x.free_symbols))} have no value); give them values")
+    if not (x.is_number and x.is_real is not False):
+        raise InputError(f"{what}: expected a real number, got {x}")
+    return x
+
+
+def _degree(expr, var) -> int | None:
+    """The degree of ``expr`` as a polynomial in ``var`` (structurally), None if it is not one."""
+    if not expr.has(var):
+        return 0
+    if expr == var:
+        return 1
+    if expr.is_Add:
+        ds = [_degree(a, var) for a in expr.args]
+        return None if None in ds else max(ds)
+    if expr.is_Mul:
+        ds = [_degree(a, var) for a in expr.args]
+        return None if None in ds else sum(ds)
+    if expr.is_Pow and expr.exp.is_Integer and expr.exp >= 0:
+        d = _degree(expr.base, var)
+        return None if d is None else d * int(expr.exp)
+    return None
+
+
+@functools.lru_cache(maxsize=16)
+def _newton_cotes(d: int) -> tuple:
+    """Nodes and weights on [0, 1] of the closed Newton–Cotes rule exact for degree ``d``."""
+    if d == 0:
+        return ((sympy.Integer(0),), (sympy.Integer(1),))
+    x = sympy.Symbol("x")
+    nodes = tuple(sympy.Rational(i, d) for i in range(d + 1))
+    weights = []
+    for i, xi_ in enumerate(nodes):
+        lag = sympy.Mul(*[(x - xj) / (xi_ - xj) for j, xj in enumerate(nodes) if j != i])
+        weights.append(sympy.integrate(lag, (x, 0, 1)))
+    return nodes, tuple(weights)
+
+
+def _lt(a, b) -> bool:
+    """a < b for real constants (exact when they are rational)."""
+    return bool(sympy.sympify(a - b) < 0)
+
+
+class _Problem:
+    """Everything about the claim that does not depend on the number of pieces."""
+
+    def __init__(self, lhs, rhs, system, values, measures, region, exists, nonnegative):
+        if not isinstance(system, System):
+            raise InputError(f"system: expected an lkverify System, got {type(system).__name__}")
+        if not isinstance(values, Mapping):
+            raise InputError(f"values: expected a mapping name → value (Parameters.resolve), got "
+                             f"{type(values).__name__}")
+        measures = tuple(measures)
+        for m in measures:
+            if not isinstance(m, Measure):
+                raise InputError(f"measures: expected Measure objects (norm_measure, window_norm, …), got "
+                                 f"{type(m).__name__}")
+        names = [m.name for m in measures]
+        if len(set(names)) != len(names):
+            raise InputError(f"measures: expected distinct names, got {names}")
+        if region is not None and not isinstance(region, Region):
+            raise InputError(f"region: expected a Region or None, got {type(region).__name__}")
+        self.system = system
+        self._charts: dict = {}
+        self.funcs = system.state_functions()
+        try:
+            sub = system.parameters.substitution(values)
+        except KeyError as exc:
+            raise InputError(f"values: {exc.args[0]!r} is not a parameter of the system; pass "
+                             f"system.parameters.resolve(...)") from exc
+        self.sub = sub
+        self.terms = [(label, apply_substitution(e, sub)) for label, e in _lhs_terms(lhs)]
+        self.rhs = apply_substitution(_sympify_scalar(rhs, "rhs"), sub)
+        self.measures = measures
+        self.msyms = {m.symbol: m for m in measures}
+        # the measures after substitution
+        self.mdata = {}
+        for m in measures:
+            vec = sympy.ImmutableMatrix(apply_substitution(m.vector, sub))
+            window = _number(apply_substitution(m.window, sub), f"measure {m.name}: window") \
+                if m.kind != "norm" else sympy.Integer(0)
+            power = _number(apply_substitution(m.power, sub), f"measure {m.name}: power")
+            if vec.free_symbols - {t, xi}:
+                extra = sorted(map(str, vec.free_symbols - {t, xi}))
+                raise InputError(f"measure {m.name}: expected a vector with parameter values, got one depending "
+                                 f"on {extra} without a value; give them values")
+            if m.kind != "norm" and not window.is_positive:
+                raise InputError(f"measure {m.name}: window: expected a positive length, got {window}")
+            self.mdata[m.name] = (vec, window, power)
+        # the constants "for every c ≥ 0"
+        wanted = set(_names(exists, "exists")) | set(_names(nonnegative, "nonnegative"))
+        clash = wanted & set(names)
+        if clash:
+            raise InputError(f"exists/nonnegative: {sorted(clash)} are measure names; a constant needs its own name")
+        everything = [e for _, e in self.terms] + [self.rhs]
+        free = set().union(*(e.free_symbols for e in everything))
+        self.constants = sorted((s for s in free if s.name in wanted), key=lambda s: s.name)
+        left = free - set(self.constants) - set(self.msyms) - {t}
+        if xi in left:
+            raise InputError("lhs/rhs: expected ξ only as the variable of a window integral, got ξ outside one; "
+                             "write the state at ξ under window_integral(...)")
+        if left:
+            raise InputError(f"lhs/rhs: expected every symbol to have a value, got {sorted(map(str, left))} without "
+                             f"one; give them values, list them in exists= (some constant ≥ 0) or nonnegative=, or "
+                             f"pass their Measure in measures=")
+        # atoms and integrals
+        self.points: dict = {}        # (state, c) → set of atoms
+        self.history_states: list = []
+        self.integrals: dict = {}     # Integral node → _Integral
+        for label, e in self.terms:
+            self._scan(e, f"lhs term {label!r}")
+        self._scan(self.rhs, "rhs")
+        for m in measures:
+            vec, window, power = self.mdata[m.name]
+            states = self._states_of(vec, m)
+            for st in states:
+                if m.kind in ("norm", "sup"):
+                    self.points.setdefault((st, sympy.Integer(0)), set())
+                if m.kind in ("window_norm", "window_integral"):
+                    self._history(st)
+        self.states = [st for st in system.states if st in {s for s, _ in self.points} | set(self.history_states)]
+        for st in self.states:
+            if st.frame is not None:
+                raise UnsupportedClaim(f"state {st.name}: expected a vector or a unit vector, got a vector of a frame; "
+                                       f"witnesses for frames (rotations) are not supported yet — the step stays "
+                                       f"undecided")
+            if st.unit and st.dim != 3:
+                raise UnsupportedClaim(f"state {st.name}: expected a unit vector of dimension 3, got dimension "
+                                       f"{st.dim}; other spheres are not supported yet")
+        # windows
+        hs = [i.h1 for i in self.integrals.values()]
+        hs += [self.mdata[m.name][1] for m in measures if m.kind in ("window_norm", "window_integral")]
+        self.H = max(hs, key=float) if hs and self.history_states else sympy.Integer(0)
+        self.constraints = self._constraints(region)
+        breaks = {sympy.Integer(0), self.H}
+        for i in self.integrals.values():
+            breaks |= {i.h1, i.h2}
+        for m in measures:
+            if m.kind != "norm":
+                breaks.add(self.mdata[m.name][1])
+        for c in self.constraints:
+            if c.kind == "sup":
+                breaks.add(c.window)
+        self.breaks = {b for b in breaks if not _lt(self.H, b)}
+
+    # -- scanning ---------------------------------------------------------------------------------
+    def _state(self, atom, where):
+        if atom.func not in self.funcs:
+            raise InputError(f"{where}: {atom} is not a state of the system and has no value; give the "
+                             f"parameter {atom.func} a value (values=) or use the system's states")
+        return self.funcs[atom.func][0]
+
+    def _history(self, st):
+        if st not in self.history_states:
+            self.history_states.append(st)
+
+    def _point(self, atom, where):
+        st = self._state(atom, where)
+        arg = atom.args[0]
+        c = sympy.expand(t - arg)
+        if c.has(t) or c.has(xi):
+            raise InputError(f"{where}: expected states at t, at t − c or at ξ under a window integral, got {atom}")
+        if c.free_symbols:
+            raise InputError(f"{where}: the delay of {atom} has no value ({sorted(map(str, c.free_symbols))}); "
+                             f"give it a value")
+        if not c.is_number or not c.is_real:
+            raise UnsupportedClaim(f"{where}: expected a state at t − c with c a real constant, got {atom}")
+        if c.is_negative:
+            raise UnsupportedClaim(f"{where}: expected the state at t or at earlier times, got {atom} (a future "
+                                   f"value)")
+        self.points.setdefault((st, c), set()).add(atom)
+
+    def _scan(self, expr, where):
+        if expr.has(sympy.Derivative, sympy.Subs):
+            raise UnsupportedClaim(f"{where}: expected state values, got a derivative of a state; substitute the "
+                                   f"system's right-hand sides first (derivative_along)")
+        nodes = outer_integrals(expr)
+        for node in nodes:
+            self._integral(node, where)
+        outside = expr.xreplace({node: sympy.Dummy() for node in nodes})
+        for atom in outside.atoms(AppliedUndef):
+            self._point(atom, where)
+
+    def _integral(self, node, where):
+        if node in self.integrals:
+            return
+        if len(node.limits) != 1:
+            raise UnsupportedClaim(f"{where}: expected single window integrals, got a nested (merged) integral "
+                                   f"{_short(node)}; witnesses for nested integrals are not supported yet")
+        var, lo, hi, inner = split_outer(node)
+        if inner.has(sympy.Integral):
+            raise UnsupportedClaim(f"{where}: expected single window integrals, got an integral inside the integrand "
+                                   f"of {_short(node)}; not supported yet")
+        h1, h2 = sympy.expand(t - lo), sympy.expand(t - hi)
+        for h in (h1, h2):
+            if h.has(t) or h.has(var) or not h.is_number:
+                if h.free_symbols - {t, var}:
+                    raise InputError(f"{where}: the window of {_short(node)} has no value "
+                                     f"({sorted(map(str, h.free_symbols - {t, var}))}); give it a value")
+                raise UnsupportedClaim(f"{where}: expected a window integral over [t − h, t − h'] with constant "
+                                       f"h ≥ h' ≥ 0, got limits ({lo}, {hi}); memory integrals are not supported")
+        if h2.is_negative or _lt(h1, h2):
+            raise UnsupportedClaim(f"{where}: expected a window integral over [t − h, t − h'] with h ≥ h' ≥ 0, "
+                                   f"got limits ({lo}, {hi})")
+        if inner.has(sympy.Derivative, sympy.Subs):
+            raise UnsupportedClaim(f"{where}: a derivative of a state under an integral is not supported")
+        dummies = {}
+        for atom in inner.atoms(AppliedUndef):
+            st = self._state(atom, where)
+            arg = atom.args[0]
+            if arg == var:
+                self._history(st)
+                dummies[atom] = sympy.Dummy()
+            elif not arg.has(var):
+                self._point(atom, where)
+                dummies[atom] = sympy.Dummy()
+            else:
+                raise UnsupportedClaim(f"{where}: expected the state at {var} under ∫ d{var}, got {atom}; shifted "
+                                       f"histories are not supported yet")
+        degree = _degree(inner.xreplace(dummies), var)
+        self.integrals[node] = _Integral(node, var, h1, h2, inner, degree)
+
+    def _states_of(self, vec, what) -> list:
+        states = []
+        for atom in vec.atoms(AppliedUndef):
+            st = self._state(atom, f"measure {getattr(what, 'name', what)}")
+            if st not in states:
+                states.append(st)
+        return states
+
+    def _constraints(self, region) -> list:
+        out = []
+        if region is None:
+            return out
+        for m, bound in region.bounds.items():
+            vec = sympy.ImmutableMatrix(apply_substitution(m.vector, self.sub))
+            bound = _number(apply_substitution(sympy.sympify(bound), self.sub), f"region bound on {m.text}")
+            if bound.is_negative:
+                raise InputError(f"region: expected a bound ≥ 0 on {m.text}, got {bound}")
+            states = [st for st in self._states_of(vec, m) if st in self.states]
+            if not states:
+                continue
+            if len(self._states_of(vec, m)) != 1:
+                raise UnsupportedClaim(f"region: expected a bound on one state minus a constant, got {m.text} "
+                                       f"(several states)")
+            st = states[0]
+            at = t if m.kind == "norm" else xi
+            center = sympy.ImmutableMatrix(st(at)) - vec
+            if center.shape != (st.dim, 1) or center.atoms(AppliedUndef) or center.free_symbols:
+                raise UnsupportedClaim(f"region: expected a bound on ‖{st.name} − c‖ with c constant, got "
+                                       f"{m.text}; other region shapes are not supported yet")
+            window = None
+            if m.kind == "sup":
+                window = _number(apply_substitution(m.window, self.sub), f"region bound on {m.text}: window")
+            out.append(_Constraint(st, m.kind, window, center, bound))
+        return out
+
+    # -- per piece count --------------------------------------------------------------------------
+    def offsets(self, m: int) -> list:
+        """Break points (offsets from t) of the piece grid, decreasing from H to 0."""
+        if not self.history_states:
+            return [sympy.Integer(0)]
+        pts = list(self.breaks) + [self.H * sympy.Rational(k, m) for k in range(1, m)]
+        out = []
+        for p in sorted(pts, key=float, reverse=True):
+            if out and abs(float(out[-1] - p)) < 1e-13 and sympy.simplify(out[-1] - p) == 0:
+                continue
+            out.append(p)
+        return out
+
+    def chart(self, st, applicable) -> _Chart:
+        if not applicable:
+            key = ("sphere" if st.unit else "free", st.dim)
+            if key not in self._charts:
+                self._charts[key] = (_Chart("cap", 3, center=sympy.Matrix([0, 0, 1])) if st.unit
+                                     else _Chart("free", st.dim))
+            return self._charts[key]
+        center = applicable[0].center
+        for c in applicable[1:]:
+            if any(sympy.simplify(a - b) != 0 for a, b in zip(c.center, center)):
+                raise UnsupportedClaim(f"region: two bounds on {st.name} with different centres; only one centre "
+                                       f"per state is supported")
+        bound = min((c.bound for c in applicable), key=float)
+        kind = "fixed" if bound == 0 else "cap" if st.unit else "ball"
+        key = (kind, st.dim, sympy.ImmutableMatrix(center), bound)
+        if key not in self._charts:
+            self._charts[key] = _Chart(kind, st.dim, center=center, bound=None if kind == "fixed" else bound)
+        return self._charts[key]
+
+    def applicable(self, st, c_start, at_t: bool) -> list:
+        """The constraints that hold on a slot starting at offset ``c_start`` (the oldest time of the slot)."""
+        out = []
+        for c in self.constraints:
+            if c.state is not st:
+                continue
+            if c.kind == "norm" and at_t:
+                out.append(c)
+            if c.kind == "sup" and not _lt(c.window, c_start):
+                out.append(c)
+        return out
+
+
+def _short(x, n=80) -> str:
+    s = str(x)
+    return s if len(s) <= n else s[: n - 1] + "…"
+
+
+class _Model:
+    """The claim on the piecewise-constant histories with a given grid: exact and numeric forms."""
+
+    def __init__(self, problem: _Problem, m: int):
+        self.problem = problem
+        self.m = m
+        self.offsets = problem.offsets(m)
+        self.npieces = len(self.offsets) - 1 if problem.history_states else 0
+        # slots
+        self.slots: list = []
+        self.point_slot: dict = {}
+        self.piece_slot: dict = {}
+        count = [0, 0]
+
+        def new_slot(st, where, chart):
+            z = tuple(sympy.Symbol(f"_wz{count[0] + i}", real=True) for i in range(st.dim))
+            count[0] += st.dim
+            slot = _Slot(st, where, z, chart, count[1])
+            count[1] += chart.nparams
+            self.slots.append(slot)
+            return slot
+
+        for st in problem.states:
+            for (s2, c) in sorted(problem.points, key=lambda k: (problem.states.index(k[0]), float(k[1]))):
+                if s2 is st:
+                    chart = problem.chart(st, problem.applicable(st, c, c == 0))
+                    self.point_slot[(st, c)] = new_slot(st, ("point", c), chart)
+            if st in problem.history_states:
+                for k in range(self.npieces):
+                    chart = problem.chart(st, problem.applicable(st, self.offsets[k], False))
+                    self.piece_slot[(st, k)] = new_slot(st, ("piece", k), chart)
+        self.nparams = count[1]
+        self.params = [sympy.Symbol(f"_wp{i}", real=True) for i in range(self.nparams)]
+        self.free = np.zeros(self.nparams, dtype=bool)
+        for slot in self.slots:
+            if slot.chart.kind == "free":
+                self.free[slot.start:slot.start + slot.chart.nparams] = True
+        # the claim in the slot symbols
+        self.point_map = {}
+        for (st, c), slot in self.point_slot.items():
+            for f, z in zip(st.functions, slot.z):
+                self.point_map[f(t - c)] = z
+            for atom in problem.points.get((st, c), ()):
+                self.point_map[atom] = slot.z[[g for g in st.functions].index(atom.func)]
+        self.measure_z = {m_.symbol: self._measure(m_) for m_ in problem.measures}
+        self.terms_z = [(label, self._convert(e, f"lhs term {label!r}")) for label, e in problem.terms]
+        self.rhs_z = self._convert(problem.rhs, "rhs")
+        cs = problem.constants
+        D = sympy.Add(*[e for _, e in self.terms_z]) - self.rhs_z
+        zero = {c: 0 for c in cs}
+        self.A = D.xreplace(zero)
+        self.B = []
+        for c in cs:
+            b = sympy.diff(D, c)
+            if b.free_symbols & set(cs):
+                raise InputError(f"rhs: expected lhs − rhs affine in the constants {', '.join(map(str, cs))} "
+                                 f"(exists= / nonnegative=), got the derivative {_short(b)} by {c}, which still "
+                                 f"depends on {', '.join(sorted(str(x) for x in b.free_symbols & set(cs)))}; "
+                                 f"write the bound affine in them")
+            self.B.append((c, b))
+        self.B_active = [(c, b) for c, b in self.B if b != 0]
+        # numeric forms
+        outs = [self.A] + [b for _, b in self.B_active]
+        zsyms = [z for slot in self.slots for z in slot.z]
+        self.zsyms = zsyms
+        self._f = sympy.lambdify(zsyms, outs, modules="numpy", cse=True)
+        zexprs = [e for slot in self.slots for e in slot.chart.expr(self.params[slot.start:slot.start +
+                                                                                 slot.chart.nparams])]
+        self._z = sympy.lambdify(self.params, zexprs, modules="numpy", cse=True)
+        size = sympy.Add(*[sympy.Abs(e.xreplace(zero)) for _, e in self.terms_z]) + sympy.Abs(self.rhs_z.xreplace(zero))
+        self._size = sympy.lambdify(zsyms, size, modules="numpy", cse=True)
+        self.scale = 1.0        # typical size of the objective (set by :meth:`calibrate`)
+        self.tol = 1e-12        # improvements below this (in units of scale) are rounding noise
+
+    # -- building -----------------------------------------------------------------------------
+    def _pieces_in(self, h1, h2):
+        """(k, σ_lo, σ_hi) of the pieces meeting the offsets [h2, h1]."""
+        out = []
+        for k in range(self.npieces):
+            hi = self.offsets[k] if not _lt(h1, self.offsets[k]) else h1
+            lo = self.offsets[k + 1] if _lt(h2, self.offsets[k + 1]) else h2
+            if _lt(lo, hi):
+                out.append((k, lo, hi))
+        return out
+
+    def _piece_map(self, st_atoms_var, k):
+        rep = {}
+        for atom in st_atoms_var:
+            st, i = self.problem.funcs[atom.func]
+            rep[atom] = self.piece_slot[(st, k)].z[i]
+        return rep
+
+    def _integral_sum(self, I: _Integral, where):
+        var = I.var
+        hist = [a for a in I.inner.atoms(AppliedUndef) if a.args[0] == var]
+        sigma = sympy.Dummy("sigma")
+        total = []
+        for k, lo, hi in self._pieces_in(I.h1, I.h2):
+            F = I.inner.xreplace(self._piece_map(hist, k)).xreplace(self.point_map)
+            if I.degree is None:
+                val = sympy.integrate(F.xreplace({var: t - sigma}), (sigma, lo, hi))
+                if val.has(sympy.Integral):
+                    raise UnsupportedClaim(f"{where}: the weight of {_short(I.node)} could not be integrated "
+                                           f"exactly over a piece; use a polynomial weight in {var}")
+                total.append(val)
+                continue
+            nodes, weights = _newton_cotes(I.degree)
+            length = hi - lo
+            total.append(length * sympy.Add(*[w * F.xreplace({var: t - (lo + length * x)})
+                                              for x, w in zip(nodes, weights)]))
+        return sympy.Add(*total)
+
+    def _convert(self, expr, where):
+        rep = {node: self._integral_sum(self.problem.integrals[node], where) for node in outer_integrals(expr)}
+        out = expr.xreplace(rep).xreplace(self.point_map).xreplace(self.measure_z)
+        if out.has(t):
+            self._time_check(out, where)
+            out = out.xreplace({t: 0})
+        return out
+
+    def _time_check(self, expr, where):
+        """Raise InputError unless ``expr`` (in the slot symbols and t) is independent of t numerically."""
+        syms = sorted(expr.free_symbols - {t}, key=lambda s: s.name)
+        f = sympy.lambdify(syms + [t], expr, modules="numpy")
+        rng = np.random.default_rng(1)
+        for _ in range(3):
+            p = rng.normal(size=len(syms)) * 0.3
+            with np.errstate(all="ignore"):
+                a, b = complex(f(*p, 0.0)), complex(f(*p, 0.731))
+            if abs(a - b) > 1e-9 * (1 + abs(a)):
+                raise InputError(f"{where}: expected an autonomous claim (t only through t − ξ and delays), got an "
+                                 f"explicit dependence on t; time-varying claims are not supported yet")
+
+    def _measure(self, m: Measure):
+        vec, window, power = self.problem.mdata[m.name]
+        if m.kind == "norm":
+            return sympy.sqrt(sympy.Add(*[c ** 2 for c in vec.xreplace(self.point_map)]))
+        xs = [a for a in vec.atoms(AppliedUndef)]
+        states = {self.problem.funcs[a.func][0] for a in xs}
+        if m.kind == "sup":
+            cands = []
+            for k, lo, hi in self._pieces_in(window, 0):
+                if all((st, k) in self.piece_slot for st in states):
+                    v = vec.xreplace(self._piece_map(xs, k))
+                    cands.append(sympy.sqrt(sympy.Add(*[c ** 2 for c in v])))
+            for (st, c), slot in self.point_slot.items():
+                if st in states and not _lt(window, c) and all((s2, c) in self.point_slot for s2 in states):
+                    rep = {a: self.point_slot[(self.problem.funcs[a.func][0], c)].z[self.problem.funcs[a.func][1]]
+                           for a in xs}
+                    cands.append(sympy.sqrt(sympy.Add(*[e ** 2 for e in vec.xreplace(rep)])))
+            cands = list(dict.fromkeys(cands))
+            return cands[0] if len(cands) == 1 else sympy.Max(*cands, evaluate=False)
+        total = []
+        for k, lo, hi in self._pieces_in(window, 0):
+            v = vec.xreplace(self._piece_map(xs, k))
+            total.append((hi - lo) * sympy.Pow(sympy.Add(*[c ** 2 for c in v]), power / 2))
+        integral = sympy.Add(*total)
+        return integral if m.kind == "window_integral" else sympy.Pow(integral, 1 / power)
+
+    # -- numeric ------------------------------------------------------------------------------
+    def zvalues(self, P: np.ndarray) -> list:
+        """The slot values for parameter columns ``P`` (shape (nparams, N))."""
+        zs = self._z(*P)
+        n = P.shape[1]
+        return [np.broadcast_to(np.asarray(z, dtype=float), (n,)) for z in zs]
+
+    def objective(self, P: np.ndarray) -> np.ndarray:
+        """``min(A, B_k…)`` (to be maximised), per column of ``P``; −inf where undefined."""
+        n = P.shape[1]
+        with np.errstate(all="ignore"):
+            outs = self._f(*self.zvalues(P))
+            vals = np.min(np.array([np.broadcast_to(np.asarray(o, dtype=float), (n,)) for o in outs]), axis=0)
+            if self.free.any():
+                vals = vals / (1 + np.sum(P[self.free] ** 2, axis=0)) ** 2   # same sign, bounded for degree < 4
+        vals = np.where(np.isfinite(vals), vals, -np.inf)
+        return vals
+
+    def calibrate(self, rng, n: int = 16) -> None:
+        """Set :attr:`scale` and :attr:`tol` from the objective and the sides' sizes at random points."""
+        P = np.array([self.random_params(rng) for _ in range(n)]).T.reshape(self.nparams, n)
+        vals = self.objective(P)
+        with np.errstate(all="ignore"):
+            sizes = np.broadcast_to(np.asarray(self._size(*self.zvalues(P)), dtype=float), (n,))
+        vals, sizes = np.abs(vals[np.isfinite(vals)]), sizes[np.isfinite(sizes)]
+        noise = 1e-14 * (float(np.median(sizes)) if sizes.size else 1.0)
+        typical = float(np.median(vals)) if vals.size else 0.0
+        self.scale = max(typical, 1e3 * noise, 1e-300)
+        self.tol = max(1e-12, 10 * noise / self.scale)
+
+    def random_params(self, rng) -> np.ndarray:
+        p = np.zeros(self.nparams)
+        for slot in self.slots:
+            p[slot.start:slot.start + slot.chart.nparams] = slot.chart.random(rng)
+        return p
+
+    def rotation_params(self, rng) -> np.ndarray:
+        """A start whose history pieces follow a rotation of the value at t."""
+        p = self.random_params(rng)
+        H = float(self.problem.H) or 1.0
+        for st in self.problem.history_states:
+            s0 = self.point_slot.get((st, 0))
+            first = s0 or self.piece_slot[(st, self.npieces - 1)]
+            ch = first.chart
+            if ch.kind == "cap" and rng.random() < 0.4:
+                p[first.start:first.start + 2] = [0.0, rng.uniform(0, 2 * math.pi)]
+            v0 = ch.value(p[first.start:first.start + ch.nparams])
+            if st.dim == 1:
+                profile = rng.uniform(-1, 1, size=1)
+                for k in range(self.npieces):
+                    slot = self.piece_slot[(st, k)]
+                    v = v0 * (1 + profile[0] * rng.random())
+                    p[slot.start:slot.start + slot.chart.nparams] = slot.chart.inverse(v)
+                continue
+            center = getattr(ch, "_c", None)
+            if center is not None and rng.random() < 0.6 and np.linalg.norm(center) > 0:
+                a = center / np.linalg.norm(center)
+            else:
+                a = _unit(rng, st.dim)
+            b = _unit(rng, st.dim)
+            b = b - (b @ a) * a
+            b = b / (np.linalg.norm(b) or 1.0)
+            mode = int(rng.integers(0, 4))
+            pieces_chart = self.piece_slot[(st, 0)].chart
+            top = getattr(pieces_chart, "_top", math.pi)
+            amp = rng.uniform(0.3, 1.6) * (top if st.unit else math.pi) * rng.choice([-1, 1])
+
+            def phi(sig):
+                return amp * (sig, math.sin(math.pi * sig), math.sin(2 * math.pi * sig), sig ** 2)[mode]
+
+            def place(slot, sig):
+                v = _plane_rotation(v0, a, b, phi(sig))
+                p[slot.start:slot.start + slot.chart.nparams] = slot.chart.inverse(v)
+
+            for k in range(self.npieces):
+                sig = float(self.offsets[k] + self.offsets[k + 1]) / 2 / H
+                place(self.piece_slot[(st, k)], sig)
+            for (s2, c), slot in self.point_slot.items():
+                if s2 is st and c != 0 and float(c) <= H:
+                    place(slot, float(c) / H)
+        return p
+
+    # -- exact -----------------------------------------------------------------------------------
+    def exact_point(self, p: np.ndarray):
+        q = [sympy.Rational(float(x)).limit_denominator(_DENOMINATOR) for x in p]
+        zexact, zballs = {}, {}
+        for slot in self.slots:
+            vals = slot.chart.expr(q[slot.start:slot.start + slot.chart.nparams])
+            for z, v in zip(slot.z, vals):
+                zexact[z] = v
+                zballs[z] = enclose(v, prec=_PREC)
+        return q, zexact, zballs
+
+
+# ---------------------------------------------------------------------------------------------
+# the search
+# ---------------------------------------------------------------------------------------------
+
+def _ball(expr, zballs):
+    expr = sympy.sympify(expr)
+    return enclose(expr, {z: zballs[z] for z in expr.free_symbols}, prec=_PREC)
+
+
+#: step lengths tried at once along a search direction (one vectorised evaluation)
+_STEPS = 2.0 ** np.arange(2, -17, -1)
+
+
+def _optimise(model: _Model, p0: np.ndarray, deadline: Deadline, best: list, maxiter: int = 200):
+    """One local maximisation of the objective from ``p0``; ``best`` = [value, point] is updated.
+
+    A small BFGS ascent in NumPy: finite-difference gradients and a line search over
+    :data:`_STEPS` are each a single vectorised call of the objective.  (SciPy's L-BFGS-B
+    goes through threaded BLAS, which spins on a loaded machine.)
+    """
+    n = model.nparams
+    scale = model.scale
+
+    def values(P):
+        return model.objective(P) / scale
+
+    def note(f, x):
+        if f > best[0]:
+            best[0], best[1] = float(f), x.copy()
+
+    if n == 0:
+        note(float(values(p0.reshape(0, 1))[0]), p0)
+        return
+    idx = np.arange(n)
+
+    def grad(x):
+        h = 1e-7 * np.maximum(1.0, np.abs(x))
+        P = np.tile(x[:, None], (1, n + 1))
+        P[idx, idx + 1] += h
+        v = values(P)
+        g = (v[1:] - v[0]) / h
+        return float(v[0]), np.where(np.isfinite(g), g, 0.0)
+
+    x = np.array(p0, dtype=float)
+    f, g = grad(x)
+    if not np.isfinite(f):
+        return
+    note(f, x)
+    H = None
+    quiet = 0
+    for _ in range(maxiter):
+        if deadline.expired:
+            return
+        gn = float(np.linalg.norm(g))
+        if not gn > 1e-12:
+            return
+        d = g * (0.5 / gn) if H is None else H @ g
+        if H is not None and not d @ g > 0:
+            H, d = None, g * (0.5 / gn)
+        cand = x[:, None] + d[:, None] * _STEPS[None, :]
+        vals = values(cand)
+        k = int(np.argmax(vals))
+        if not vals[k] > f:
+            if H is None:
+                return
+            H = None
+            continue
+        x_new = cand[:, k]
+        f_new, g_new = grad(x_new)
+        if not np.isfinite(f_new):
+            return
+        s_, y_ = x_new - x, g - g_new          # BFGS for −f
+        sy = float(s_ @ y_)
+        if sy > 1e-12 * float(np.linalg.norm(s_) * np.linalg.norm(y_)):
+            if H is None:
+                H = (sy / float(y_ @ y_)) * np.eye(n)
+            rho = 1.0 / sy
+            V = np.eye(n) - rho * np.outer(s_, y_)
+            H = V @ H @ V.T + rho * np.outer(s_, s_)
+        quiet = quiet + 1 if f_new - f < model.tol else 0
+        x, f, g = x_new, f_new, g_new
+        note(f, x)
+        if quiet >= 3:
+            return
+
+
+def _recheck(model: _Model, p: np.ndarray):
+    """The Witness at the rational point near ``p``, or None if the violation is not proved there."""
+    q, zexact, zballs = model.exact_point(p)
+    A = _ball(model.A, zballs)
+    if not A > 0:
+        return None
+    coefficients = {}
+    for c, b in model.B:
+        ball = _ball(b, zballs)
+        if not ball >= 0:
+            return None
+        coefficients[str(c)] = (float_down(ball), float_up(ball))
+    return _witness(model, q, zexact, zballs, A, coefficients)
+
+
+def _mid(ball) -> float:
+    return float(ball.mid())
+
+
+def _witness(model: _Model, q, zexact, zballs, A, coefficients) -> Witness:
+    problem = model.problem
+    state, history, params, vectors, charts = {}, {}, {}, {}, {}
+    for slot in model.slots:
+        kind, c = slot.where
+        vals = [_mid(zballs[z]) for z in slot.z]
+        if kind == "point":
+            for f, v in zip(slot.state.functions, vals):
+                state[str(f(t - c))] = v
+        else:
+            history.setdefault(slot.state.name, []).append(vals)
+        label = slot.label
+        params[label] = [str(x) for x in q[slot.start:slot.start + slot.chart.nparams]]
+        vectors[label] = [str(zexact[z]) for z in slot.z]
+        charts[label] = slot.chart.describe()
+    cs = problem.constants
+    zero = {c: 0 for c in cs}
+    terms = {}
+    for label, e in model.terms_z:
+        terms[label] = _mid(_ball(e.xreplace(zero), zballs))
+        for c in cs:
+            d = sympy.diff(e, c)
+            if d != 0:
+                terms[f"{label} [coefficient of {c}]"] = _mid(_ball(d, zballs))
+    terms["rhs"] = _mid(_ball(model.rhs_z.xreplace(zero), zballs))
+    for c in cs:
+        d = sympy.diff(model.rhs_z, c)
+        if d != 0:
+            terms[f"rhs [coefficient of {c}]"] = _mid(_ball(d, zballs))
+    measures = {m.name: _mid(_ball(model.measure_z[m.symbol], zballs)) for m in problem.measures}
+    exact = {
+        "t": "0",
+        "pieces": model.npieces,
+        "window": str(problem.H) if model.npieces else "",
+        "breakpoints": [f"t - {o}" if o != 0 else "t" for o in model.offsets] if model.npieces else [],
+        "parameters": params,
+        "vectors": vectors,
+        "charts": charts,
+        "texts": {st.name: st.text for st in problem.states},
+        "constants": [str(c) for c in cs],
+    }
+    return Witness((float_down(A), float_up(A)), state, history, measures, terms, exact, coefficients)
+
+
+def search_witness(lhs, rhs, *, system, values, measures, region=None, exists=(), nonnegative=(),
+                   pieces=(1, 2, 3, 5), starts=24, budget=None, seed=0) -> Witness | None:
+    """Search for a state and a history that refute ``lhs ≤ rhs``; return a rechecked :class:`Witness` or None.
+
+    Parameters
+    ----------
+    lhs : sympy expression or sequence of Term
+        In the model's vocabulary: state functions at t, at t − c and under window
+        integrals, parameters of ``system``.  Labelled terms are summed; their values at
+        the witness are reported by label.
+    rhs : sympy expression
+        In the measures' symbols (``m.symbol``), parameters, constants of ``exists`` /
+        ``nonnegative`` (and possibly state functions).
+    system : System
+    values : mapping
+        Resolved parameter values (``system.parameters.resolve(...)``).
+    measures : sequence of Measure
+        The measures the right-hand side is written in (all are evaluated at the witness).
+    region : Region, optional
+        Bounds of kind ``norm`` on ``x(t) − c`` and ``sup`` on ``x(ξ) − c``; a witness stays inside.
+    exists : sequence of Symbol or str
+        Constants "some c ≥ 0": the refutation must hold for every value ≥ 0.
+    nonnegative : sequence of Symbol or str
+        Free nonnegative symbols (λ) without a value: likewise, every value.
+    pieces : sequence of int, default (1, 2, 3, 5)
+        Numbers of equal history pieces tried, in order; the first that gives a
+        rechecked witness wins.
+    starts : int, default 24
+        Local optimisations per piece count (every second a rotation start).
+    budget : Budget, Deadline, float or None
+        Wall-clock limit (None: none), checked between optimisation steps; when it runs
+        out the best candidates so far are rechecked.  Building the exact expression of a
+        piece count is not interrupted.
+    seed : int, default 0
+
+    Returns
+    -------
+    Witness or None
+        None: no violation could be proved (not a proof of the claim).
+
+    Raises
+    ------
+    InputError
+        Malformed arguments; symbols without a value; ``lhs − rhs`` not affine in the
+        constants; an explicit (time-varying) t.
+    UnsupportedClaim
+        A claim outside the witness family (see the module notes); it is an
+        :class:`~lkverify.errors.UnsupportedInput` and an InputError.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import Equation, Parameters, System, Term, UnitVector, t
+    >>> P = Parameters(); s = UnitVector("s")
+    >>> sys_ = System([Equation(s, [Term(sympy.zeros(3, 1))])], parameters=P)
+    >>> search_witness(s(t).dot(s(t)), 1, system=sys_, values={}, measures=[], starts=2) is None
+    True
+    >>> w = search_witness(s(t)[0], sympy.Rational(99, 100), system=sys_, values={}, measures=[], starts=2)
+    >>> w.violation[0] > 0
+    True
+    """
+    problem = _Problem(lhs, rhs, system, values, measures, region, exists, nonnegative)
+    if isinstance(pieces, numbers.Integral):
+        pieces = (pieces,)
+    pieces = tuple(pieces)
+    if not pieces or any(isinstance(m, bool) or not isinstance(m, numbers.Integral) or m < 1 for m in pieces):
+        raise InputError(f"pieces: expected positive integers such as (1, 2, 3, 5), got {pieces!r}")
+    if isinstance(starts, bool) or not isinstance(starts, numbers.Integral) or starts < 1:
+        raise InputError(f"starts: expected a positive integer, got {starts!r}")
+    if isinstance(seed, bool) or not isinstance(seed, numbers.Integral):
+        raise InputError(f"seed: expected an integer, got {seed!r}")
+    deadline = budget if isinstance(budget, Deadline) else Budget.of(budget).deadline()
+    rng = np.random.default_rng(seed)
+    if not problem.history_states:
+        pieces = pieces[:1]
+    for m in pieces:
+        if deadline.expired:
+            break
+        model = _Model(problem, m)
+        cands = []
+        model.calibrate(rng)
+        for k in range(starts):
+            if deadline.expired:
+                break
+            rotation = k % 2 == 1 and bool(problem.history_states)
+            p0 = model.rotation_params(rng) if rotation else model.random_params(rng)
+            best = [-np.inf, p0]
+            _optimise(model, p0, deadline, best)
+            if np.isfinite(best[0]):
+                cands.append((best[0], best[1]))
+        cands = sorted((c for c in cands if c[0] > model.tol), key=lambda c: -c[0])
+        for _, p in cands[:_RECHECKS]:
+            w = _recheck(model, p)
+            if w is not None:
+                return w
+    return None
