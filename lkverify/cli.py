@@ -180,10 +180,11 @@ def _one_line(exc) -> str:
 
 def _dispatch(args) -> int:
     if args.command == "list":
-        for pf in catalogue():
-            for name, item in pf.items.items():
-                kind = {"Example": "example", "Check": "check"}.get(type(item).__name__, "theorem")
-                print(f"{pf.paper + '.' + name:<28} {kind:<8} {item.title}")
+        rows = [(f"{pf.paper}.{name}", {"Example": "example", "Check": "check"}.get(type(item).__name__, "theorem"),
+                 item.title) for pf in catalogue() for name, item in pf.items.items()]
+        width = max((len(r[0]) for r in rows), default=0)
+        for qualified, kind, title in rows:
+            print(f"{qualified:<{width}} {kind:<8} {title}")
         return 0
     if args.command in (None, "report"):
         return _report(json_out=getattr(args, "json", False))

@@ -21,11 +21,13 @@ h = (1+t)^{−8/7} (bounded, not attractive).  The rᵢ are not printed: the
 base-frame axes are assumed.
 
 Modules: :mod:`.equations` (parameters, states, (2), (9)), :mod:`.theorem1`,
+:mod:`.theorem1_bound` (the printed h^{ν−1}ḣ step, refuted for decreasing h, and its corrected form),
 :mod:`.example` (section 6), :mod:`.lemma1` (Lemma 1 with a certified δ(ε)).
 """
 
 from .equations import PAPER, D, J, P, a1, a2, eps, eta, gamma, h, nu, omega, r1, r2, r3, s1, s2, s3, system
 from .theorem1 import functional, printed_Vdot, theorem1
+from .theorem1_bound import theorem1_bound
 from .example import HISTORY, example, remark2_energy
 from .lemma1 import EPSILONS, Lemma1Constants, lemma1, lemma1_delta, lemma1_F
 
@@ -34,7 +36,7 @@ __all__ = [
     # parameters, states and the system (2), (9)
     "P", "J", "D", "a1", "a2", "h", "r1", "r2", "r3", "gamma", "nu", "eps", "omega", "s1", "s2", "s3", "eta", "system",
     # Theorem 1
-    "functional", "printed_Vdot", "theorem1",
+    "functional", "printed_Vdot", "theorem1", "theorem1_bound",
     # section 6
     "HISTORY", "example", "remark2_energy",
     # Lemma 1

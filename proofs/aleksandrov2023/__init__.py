@@ -25,7 +25,9 @@ F = h·I with h = 1, a = 0, b = −1, τ = 1, μ = 2.
 
 Modules: :mod:`.equations` (parameters, states, (10), (12)), :mod:`.theorem3`,
 :mod:`.theorem3_constants` (the constants for μ = 2, estimate (15)),
-:mod:`.theorem3_bound` (the printed V̇ bound, refuted), :mod:`.section6` (the data of the
+:mod:`.theorem3_chain` (the bound steps V ≥ L, V ≤ U, V̇ ≤ W and the decay),
+:mod:`.theorem3_bound` (the printed V̇ bound, refuted, and corrected), :mod:`.theorem3_caps` (the best d1 and δ̃
+of estimate (15) for this functional), :mod:`.section6` (the data of the
 figures), :mod:`.fig1` … :mod:`.fig7`, :mod:`.fig7_chi` (‖χ‖_τ of the Fig. 7 data).
 The items are re-exported here under their names: ``aleksandrov2023.theorem3`` is the
 item (the module is ``aleksandrov2023.theorem3`` in ``sys.modules``; import names from
@@ -42,6 +44,7 @@ from .fig5 import fig5
 from .fig6 import fig6
 from .fig7 import fig7
 from .theorem3_bound import theorem3_bound
+from .theorem3_caps import theorem3_caps
 from .fig7_chi import fig7_chi
 from .section6 import FIG7_HISTORY, PRINTED_15, R_TARGET, SECTION6
 from .theorem3_constants import THEOREM3_CONSTANTS
@@ -52,7 +55,7 @@ __all__ = [
     "P", "Theta", "F", "F_inv", "a", "b", "tau", "mu", "r", "lam", "alpha", "beta", "omega", "s", "n", "J", "K",
     "system",
     # Theorem 3
-    "functional", "structured_Vdot", "theorem3", "THEOREM3_CONSTANTS", "theorem3_bound",
+    "functional", "structured_Vdot", "theorem3", "THEOREM3_CONSTANTS", "theorem3_bound", "theorem3_caps",
     # section 6
     "R_TARGET", "SECTION6", "FIG7_HISTORY", "PRINTED_15",
     "fig1", "fig2", "fig3", "fig4", "fig5", "fig6", "fig7", "fig7_chi",

@@ -88,12 +88,16 @@ def test_lemma1_rejects_eps_outside_the_hypotheses(capsys):
 def test_printed_bound_step_of_theorem3_is_refuted():
     (item,) = find_items("aleksandrov2023.theorem3_bound")
     rep = item.run({})
-    (r,) = rep.results
-    assert r.status is Status.FAILED
-    assert r.value["lhs_coefficient_of_lambda"] > 0 and r.value["lhs_rest"] >= 0
+    steps = [r for r in rep.results if r.value["rule"] == "term by term"]  # one row per step, after its terms
+    printed = next(r for r in steps if r.name.startswith("printed"))
+    corrected = next(r for r in steps if r.name.startswith("corrected"))
+    assert printed.status is Status.FAILED and corrected.status is Status.EXACT
+    (term,) = printed.value["terms"]
+    assert term["witness"]["violation"][0] > 0
+    assert {"c7", "lam"} <= set(term["witness"]["coefficients"])
     # with b > 0 the printed sign is harmless: nothing to refute
-    (r,) = item.run({"b": "0.5", "a": "1"}).results
-    assert r.status is Status.UNDECIDED
+    rows = [r for r in item.run({"b": "0.5", "a": "1"}).results if r.value["rule"] == "term by term"]
+    assert next(r for r in rows if r.name.startswith("printed")).status is Status.UNDECIDED
 
 
 def test_flagship_estimate_15_is_certified_and_compared_with_the_paper(capsys):

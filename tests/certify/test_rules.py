@@ -154,3 +154,38 @@ def test_nonnegative_structure():
     assert not nonnegative(a - b)
     assert nonnegative(sympy.Integral(a**2, (xi, t - 1, t)))
     assert not nonnegative(sympy.Integral(a**2, (xi, t, t - 1)))
+
+
+def test_triangle_inequality_and_operator_norm_nodes(ctx):
+    from lkverify.certify.steps.rules import mapped, summed
+
+    A = sympy.Matrix([[0, 2, 0], [0, 0, 0], [0, 0, 1]])
+    v = 3 * s(t).cross(R) + A * omega(t)
+    term = omega(t).dot(v)
+    nb = summed(scaled(3, crossed(measured(E), unit(R))), mapped(A, measured(W), 2))
+    ok = CauchySchwarz(omega(t), v, (measured(W), nb)).apply(term, "upper", ctx)
+    assert ok.status is Status.EXACT and sympy.expand(ok.bound - w * (3 * e + 2 * w)) == 0
+    small = summed(scaled(3, crossed(measured(E), unit(R))), mapped(A, measured(W), sympy.Rational(19, 10)))
+    bad = CauchySchwarz(omega(t), v, (measured(W), small)).apply(term, "upper", ctx)
+    assert bad.status is Status.FAILED and "operator norm is larger" in bad.detail
+    # a triangle whose parts do not add up to the vector
+    wrong = summed(scaled(2, crossed(measured(E), unit(R))), mapped(A, measured(W), 2))
+    assert CauchySchwarz(omega(t), v, (measured(W), wrong)).apply(term, "upper", ctx).status is Status.FAILED
+
+
+def test_homogeneous_rewrite_certifies_the_constant_and_checks_the_degree(ctx):
+    from lkverify.certify.steps.rules import Homogeneous
+
+    MEAS = dict(MEASURES)
+    e2m = norm_measure("e2", x(t))
+    MEAS["e2"] = e2m
+    c2 = Context(SYS, P.resolve({}, use_defaults=True), MEAS, REGION)
+    e2 = e2m.symbol
+    g = (e**2 + e2**2) ** sympy.Rational(3, 10) * (e + e2)  # degree 8/5, sup of g/T at e = e2: 2^{3/10}·2/2
+    T = e ** sympy.Rational(8, 5) + e2 ** sympy.Rational(8, 5)
+    ok = Homogeneous(("e", "e2"), T, "c", factor=w).rewrite(w * g, c2)
+    assert ok.status is Status.CERTIFIED
+    kappa = ok.constants[0][1]
+    assert 2 ** 0.3 <= kappa <= 2 ** 0.3 * 1.01
+    bad = Homogeneous(("e", "e2"), e**2 + e2**2, "c", factor=w).rewrite(w * g, c2)
+    assert bad.status is Status.FAILED and "homogeneous" in bad.detail

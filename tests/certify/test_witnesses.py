@@ -1,9 +1,12 @@
 """Adversarial witnesses (lkverify.certify.steps.witnesses): true bounds are never refuted, mutations are.
 
-The model is paper 002's (unit vector s, angular velocity ω, target r, window integrals J, K).
-A refutation must be proved at an exact point (lo > 0); the reported witness is recomputed
+The main model is paper 002's (unit vector s, angular velocity ω, target r, window integrals
+J, K); frames are paper 000's (s1, s2, s3 one rotation, L = s1×r1 + s2×r2) and, with the
+time-varying damping h(t) = (1+t)^{−7/8} at a given witness time, paper 001's.  A
+refutation must be proved at an exact point (lo > 0); the reported witness is recomputed
 here independently from its floats (the sums over the pieces, the weight ξ + τ − t integrated
-by hand) and must lie in the region.
+by hand, ḣ(1) by hand) and must lie in the region; a frame must be exactly orthonormal and
+right-handed at the exact point.
 """
 
 import json
@@ -223,14 +226,6 @@ def test_weights_are_integrated_exactly():
 
 # -- 5. bad input ---------------------------------------------------------------------------------------
 
-def test_frames_are_unsupported():
-    from lkverify.proofs.aleksandrov2017.equations import P as P17, s1, system as system17
-
-    with pytest.raises(UnsupportedClaim, match="frame") as info:
-        search_witness(s1(t)[0], 2, system=system17, values=P17.resolve({}), measures=[])
-    assert isinstance(info.value, UnsupportedInput) and isinstance(info.value, InputError)
-
-
 @pytest.mark.parametrize("lhs, match", [
     (sympy.Integral(sympy.Integral(x(zeta)[0] ** 2, (zeta, xi, t)), (xi, t - TAUX, t)), "nested"),
     (memory_integral(x(xi)[0] ** 2), "memory integrals"),
@@ -239,12 +234,17 @@ def test_frames_are_unsupported():
     (sympy.Derivative(X, t), "derivative"),
 ])
 def test_unsupported_constructs(lhs, match):
-    with pytest.raises(UnsupportedClaim, match=match):
+    with pytest.raises(UnsupportedClaim, match=match) as info:
         search_x(lhs, 0)
+    assert isinstance(info.value, UnsupportedInput) and isinstance(info.value, InputError)
 
 
 @pytest.mark.parametrize("lhs, rhs, kw, match", [
     (HX(t) * X ** 2, -1, {}, "time-varying"),
+    (X ** 2, 0, {"time": "1"}, "time: expected a real number"),
+    (X ** 2, 0, {"time": (1, 0)}, "lo < hi"),
+    (X ** 2, 0, {"time": (0, 1, 2)}, "pair"),
+    (X ** 2, 0, {"time": float("nan")}, "finite"),
     (X ** 2, sympy.Symbol("c") ** 2, {"exists": ["c"]}, "affine"),
     (X ** 2, sympy.Symbol("c"), {}, "without one"),
     ("x**2", 0, {}, "string"),
@@ -288,3 +288,212 @@ def test_recheck_requires_every_coefficient_nonnegative():
     assert _recheck(model, np.array([0.5])) is None
     wit = _recheck(model, np.array([0.0]))
     assert wit is not None and wit.violation == (1.0, 1.0) and wit.coefficients == {"c": (0.0, 0.0)}
+
+
+# -- 7. frames: s1, s2, s3 are one rotation (paper 000) ------------------------------------------------
+
+from lkverify.proofs.aleksandrov2026 import equations as eq0  # noqa: E402
+
+V0 = eq0.P.resolve({"beta": "-1"}, use_defaults=True)          # β < 0 (Theorem 2); γ has no value
+E1, E2 = norm_measure("e1", eq0.s1(t) - eq0.r1), norm_measure("e2", eq0.s2(t) - eq0.r2)
+W0 = norm_measure("w", eq0.omega(t))
+M1, M2 = sup_norm("m1", eq0.s1(xi) - eq0.r1, window=eq0.tau), sup_norm("m2", eq0.s2(xi) - eq0.r2, window=eq0.tau)
+REGION0 = Region({M1: R(1, 5), M2: R(1, 5), W0: R(1, 5)})
+MEASURES0 = [E1, E2, W0, M1, M2]
+e1, e2, w0, m1, m2 = E1.symbol, E2.symbol, W0.symbol, M1.symbol, M2.symbol
+R0 = np.array([[1, 1, 0], [-1, 1, 0], [0, 0, np.sqrt(2)]]) / np.sqrt(2)      # rows r1, r2, r3
+FRAME = ("s1", "s2", "s3")
+
+
+def search0(lhs, rhs, **kw):
+    kw.setdefault("region", REGION0)
+    return search_witness(lhs, rhs, system=eq0.system, values=V0, measures=MEASURES0, **kw)
+
+
+def torque(triad, refs=R0):
+    """L = s1×r1 + s2×r2 (α1 = α2 = 1) and f = ½(‖s1 − r1‖² + ‖s2 − r2‖²) from floats."""
+    L = np.cross(triad[0], refs[0]) + np.cross(triad[1], refs[1])
+    f = (np.linalg.norm(triad[0] - refs[0]) ** 2 + np.linalg.norm(triad[1] - refs[1]) ** 2) / 2
+    return L, f
+
+
+def assert_frame(triad, refs=R0, delta=0.2):
+    """Orthonormal, right-handed, s1 and s2 inside their caps (floats)."""
+    T = np.array(triad)
+    assert np.allclose(T @ T.T, np.eye(3), atol=1e-12) and np.allclose(np.cross(T[0], T[1]), T[2], atol=1e-12)
+    for i in (0, 1):
+        assert np.linalg.norm(T[i] - refs[i]) <= delta + 1e-12
+
+
+def assert_exact_frame(witness, label):
+    """The exact triad of the slot ``label`` is exactly orthonormal with s3 = s1 × s2."""
+    S = sympy.Matrix(3, 3, [sympy.sympify(v) for v in witness.exact["vectors"][label]]).T     # columns s_i
+    assert all(sympy.expand(e) == 0 for e in S.T * S - sympy.eye(3))
+    assert all(sympy.expand(e) == 0 for e in S[:, 2] - S[:, 0].cross(S[:, 1]))
+    assert len(witness.exact["parameters"][label]) == 3               # the rational Cayley vector k
+    assert all(sympy.Rational(q).is_Rational for q in witness.exact["parameters"][label])
+
+
+NU0 = 0.3
+THEOREM2_LHS = -eq0.gamma * eq0.beta * eq0.f(t) ** eq0.nu * dot(eq0.omega(t), eq0.L(t))
+
+
+def test_printed_theorem2_step_with_negative_beta_is_refuted():
+    # −γβf^ν ωᵀL ≤ γβc7‖ω‖(e1^{2ν+1} + e2^{2ν+1}): with β < 0 the right-hand side is ≤ 0
+    rhs = eq0.gamma * eq0.beta * c7 * w0 * (e1 ** (2 * eq0.nu + 1) + e2 ** (2 * eq0.nu + 1))
+    wit = search0(THEOREM2_LHS, rhs, exists=[c7], nonnegative=[eq0.gamma])
+    assert wit is not None and wit.violation[0] > 0
+    assert wit.exact["factors"] == ["gamma"] and set(wit.coefficients) == {"c7"}
+    assert wit.coefficients["c7"][0] >= 0
+    triad = [vec(wit, n) for n in FRAME]
+    assert_frame(triad)
+    assert_exact_frame(wit, "s1,s2,s3(t)")
+    om = vec(wit, "omega")
+    assert np.linalg.norm(om) <= 0.2 + 1e-12
+    L, f = torque(triad)
+    A = f ** NU0 * om @ L                                          # (lhs − rhs)/γ at c7 = 0, β = −1
+    d1, d2 = (np.linalg.norm(triad[i] - R0[i]) for i in (0, 1))
+    assert A == pytest.approx(sum(wit.violation) / 2, rel=1e-6)
+    assert np.linalg.norm(om) * (d1 ** 1.6 + d2 ** 1.6) == pytest.approx(sum(wit.coefficients["c7"]) / 2, rel=1e-6)
+    assert wit.terms["lhs"] == pytest.approx(A, rel=1e-6)         # per unit γ
+    assert wit.measures["e1"] == pytest.approx(d1, rel=1e-9)
+    assert "(lhs − rhs)/gamma" in wit.text() and "gamma > 0, c7 ≥ 0" in wit.text()
+
+
+def test_theorem2_step_with_abs_beta_is_not_refuted():
+    # with |β| the bound holds for c7 large: no witness works for every c7 ≥ 0
+    rhs = eq0.gamma * abs(eq0.beta) * c7 * w0 * (e1 ** (2 * eq0.nu + 1) + e2 ** (2 * eq0.nu + 1))
+    assert search0(THEOREM2_LHS, rhs, exists=[c7], nonnegative=[eq0.gamma]) is None
+
+
+def test_triangle_bound_on_the_torque_is_not_refuted():
+    # ‖L‖ ≤ α1‖s1 × r1‖ + α2‖s2 × r2‖ ≤ α1 e1 + α2 e2 (‖s × r‖ = ‖(s − r) × r‖ ≤ ‖s − r‖)
+    norm_L = sympy.sqrt(norm_squared(eq0.L(t)))
+    assert search0(norm_L, eq0.alpha1 * e1 + eq0.alpha2 * e2) is None
+    assert search0(norm_squared(eq0.L(t)), 2 * (eq0.alpha1 ** 2 * e1 ** 2 + eq0.alpha2 ** 2 * e2 ** 2)) is None
+
+
+def test_false_torque_bound_is_refuted():
+    # about r3 by θ: ‖L‖² = 4 sin²θ, e1² + e2² = 8 sin²(θ/2): ‖L‖² ≤ 1.9(e1² + e2²) fails for θ < 25°
+    wit = search0(norm_squared(eq0.L(t)), R(19, 10) * (eq0.alpha1 ** 2 * e1 ** 2 + eq0.alpha2 ** 2 * e2 ** 2))
+    assert wit is not None and wit.violation[0] > 0
+    triad = [vec(wit, n) for n in FRAME]
+    assert_frame(triad)
+    assert_exact_frame(wit, "s1,s2,s3(t)")
+    L, _ = torque(triad)
+    d2 = sum(np.linalg.norm(triad[i] - R0[i]) ** 2 for i in (0, 1))
+    assert L @ L - 1.9 * d2 == pytest.approx(sum(wit.violation) / 2, rel=1e-6)
+
+
+def test_frame_constraints_are_used():
+    s1, s2, s3 = (v(t) for v in (eq0.s1, eq0.s2, eq0.s3))
+    # orthonormal and right-handed at every exact point (no region: all of SO(3))
+    assert search0(dot(s1, s2) ** 2 + norm_squared(s3 - cross(s1, s2)), 0, region=None) is None
+    wit = search0(-dot(s3, eq0.r3), -R(99, 100), region=None)        # large rotations are reachable
+    assert wit is not None and vec(wit, "s3") @ R0[2] < -0.99
+    assert_exact_frame(wit, "s1,s2,s3(t)")
+
+
+def test_delayed_frame_values_are_rotations_of_their_own():
+    # ‖L(t) − L(t − τ)‖ ≤ ‖L(t)‖ + ‖L(t − τ)‖ ≤ 2(m1 + m2); the factor 2 dropped fails (±θ about r3)
+    lhs = dot(eq0.omega(t), eq0.L(t) - eq0.L(t - eq0.tau))
+    assert search0(lhs, 2 * w0 * (m1 + m2)) is None
+    wit = search0(lhs, w0 * (m1 + m2))
+    assert wit is not None and wit.violation[0] > 0
+    now, before = ([vec(wit, n, when) for n in FRAME] for when in ("t", "t - 1"))
+    assert_frame(now)
+    assert_frame(before)
+    assert_exact_frame(wit, "s1,s2,s3(t - 1)")
+    assert wit.measures["m1"] == pytest.approx(max(np.linalg.norm(v[0] - R0[0]) for v in (now, before)), rel=1e-9)
+    om = vec(wit, "omega")
+    value = om @ (torque(now)[0] - torque(before)[0]) - np.linalg.norm(om) * (wit.measures["m1"] + wit.measures["m2"])
+    assert value == pytest.approx(sum(wit.violation) / 2, rel=1e-6)
+
+
+def test_frame_histories_are_rotations():
+    # ½∫(s1·r3)² ≤ (∫ s1·r3)² holds for constant histories and fails when s1 tips both ways
+    q = window_integral(dot(eq0.s1(xi), eq0.r3) ** 2, eq0.tau) / 2 - window_integral(dot(eq0.s1(xi), eq0.r3), eq0.tau) ** 2
+    assert search0(q, 0, pieces=(1,)) is None
+    wit = search0(q, 0)
+    assert wit is not None and wit.exact["pieces"] >= 2
+    offsets = [0.0 if b == "t" else float(sympy.sympify(b.replace("t - ", ""))) for b in wit.exact["breakpoints"]]
+    tips = []
+    for k in range(wit.exact["pieces"]):
+        triad = [np.array(wit.history[n][k]) for n in FRAME]
+        assert_frame(triad)
+        tips.append((offsets[k] - offsets[k + 1], triad[0] @ R0[2]))
+    assert min(v for _, v in tips) < 0 < max(v for _, v in tips)
+    value = sum(h * v ** 2 for h, v in tips) / 2 - sum(h * v for h, v in tips) ** 2
+    assert value == pytest.approx(sum(wit.violation) / 2, rel=1e-6)
+
+
+# -- 8. explicit time: h(t), ḣ(t) at the witness time (paper 001) ---------------------------------------
+
+from lkverify.proofs.aleksandrov2017 import equations as eq1  # noqa: E402
+
+V1 = eq1.P.resolve({}, use_defaults=True)                       # h = (1+t)^(−7/8), ν = 1
+F1, F2 = norm_measure("e1", eq1.s1(t) - eq1.r1), norm_measure("e2", eq1.s2(t) - eq1.r2)
+W1 = norm_measure("w", eq1.omega(t))
+REGION1 = Region({F1: R(1, 5), F2: R(1, 5), W1: R(1, 5)})       # bounds at t (kind norm)
+alpha6 = sympy.Symbol("alpha6", nonnegative=True)
+HDOT = eq1.h(t).diff(t)
+THEOREM1_LHS = eq1.gamma * eq1.nu * eq1.h(t) ** (eq1.nu - 1) * HDOT * dot(eq1.omega(t), eq1.J * eq1.eta)
+
+
+def search1(lhs, rhs, **kw):
+    return search_witness(lhs, rhs, system=eq1.system, values=V1, measures=[F1, F2, W1], region=REGION1,
+                          exists=[alpha6], nonnegative=[eq1.gamma], **kw)
+
+
+def test_printed_theorem1_term_is_refuted_at_time_1():
+    # γνh^{ν−1}ḣ ωᵀJη ≤ γα6(e1 + e2)h^{ν−1}ḣ‖ω‖: ḣ < 0 makes the printed right-hand side ≤ 0
+    rhs = eq1.gamma * alpha6 * (F1.symbol + F2.symbol) * eq1.h(t) ** (eq1.nu - 1) * HDOT * W1.symbol
+    wit = search1(THEOREM1_LHS, rhs, time=1)
+    assert wit is not None and wit.violation[0] > 0
+    assert wit.exact["t"] == "1" and wit.exact["time"] == "given" and wit.text().startswith("at t = 1, ")
+    assert wit.exact["factors"] == ["gamma"] and wit.coefficients["alpha6"][0] >= 0
+    refs = np.eye(3)
+    triad = [vec(wit, n) for n in FRAME]
+    assert_frame(triad, refs)
+    assert_exact_frame(wit, "s1,s2,s3(t)")
+    om = vec(wit, "omega")
+    hdot = -7 / 8 * 2 ** (-15 / 8)                                  # ḣ(1)
+    eta = np.cross(triad[0], refs[0]) + np.cross(triad[1], refs[1])
+    assert hdot * om @ (np.diag([5, 6, 4]) @ eta) == pytest.approx(sum(wit.violation) / 2, rel=1e-6)
+    d = sum(np.linalg.norm(triad[i] - refs[i]) for i in (0, 1))
+    assert -hdot * d * np.linalg.norm(om) == pytest.approx(sum(wit.coefficients["alpha6"]) / 2, rel=1e-6)
+
+
+def test_theorem1_term_with_abs_hdot_is_not_refuted():
+    # |ωᵀJη| ≤ ‖J‖‖ω‖‖η‖ ≤ 6(e1 + e2)‖ω‖: true for α6 ≥ 6, so never refuted for every α6
+    rhs = eq1.gamma * alpha6 * (F1.symbol + F2.symbol) * eq1.h(t) ** (eq1.nu - 1) * abs(HDOT) * W1.symbol
+    assert search1(THEOREM1_LHS, rhs, time=1) is None
+
+
+def test_explicit_time_needs_time_argument():
+    rhs = eq1.gamma * alpha6 * (F1.symbol + F2.symbol) * HDOT * W1.symbol
+    with pytest.raises(InputError, match="time=") as info:
+        search1(THEOREM1_LHS, rhs)
+    assert not isinstance(info.value, UnsupportedInput)
+
+
+def test_the_witness_time_is_used():
+    # h(t) = 1 + t: h x² ≤ (3/2)x² holds at t = 0 and fails at t = 1; searched in [0, 1] at t > 1/2
+    lhs, rhs = HX(t) * X ** 2, R(3, 2) * X ** 2
+    assert search_x(lhs, rhs, time=0) is None
+    wit = search_x(lhs, rhs, time=1)
+    assert wit is not None and wit.exact["t"] == "1"
+    assert wit.violation[0] == pytest.approx(wit.state["x_1(t)"] ** 2 / 2, rel=1e-6)
+    wit = search_x(lhs, rhs, time=(0, 1))
+    t_w = sympy.Rational(wit.exact["t"])
+    assert wit.exact["time"] == "searched in [0, 1]" and R(1, 2) < t_w <= 1
+    assert json.loads(json.dumps(wit.to_json()))["exact"]["t"] == str(t_w)
+
+
+def test_windows_end_at_the_witness_time():
+    # ∫_{t−1}^t (1 + ξ)x(ξ)² dξ: at t = 1 the weight is in [1, 2] (3/2 for a constant history), at t = 0 in [0, 1]
+    lhs = window_integral(HX(xi) * x(xi)[0] ** 2, TAUX)
+    assert search_x(lhs, R(7, 5) * IX.symbol, time=0) is None
+    wit = search_x(lhs, R(7, 5) * IX.symbol, time=1)
+    assert wit is not None and wit.violation[0] > 0
+    assert search_x(lhs, 2 * IX.symbol, time=1) is None

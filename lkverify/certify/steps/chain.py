@@ -150,7 +150,7 @@ class TermwiseBound:
     name : str
     functional : Functional
     system : System
-    lhs : {"V", "Vdot"}
+    lhs : {"V", "Vdot", "terms"}
     bounds : sequence of TermBound
     rhs : sympy expression
         In the measures' symbols, parameters and the constants of Template rules.
@@ -172,6 +172,12 @@ class TermwiseBound:
     exists : tuple of Symbol
         Constants the step only claims to exist ("c7 > 0"): a witness must refute the
         step for every nonnegative value of them.
+    terms : tuple of Term
+        For ``lhs="terms"``: labelled terms computed from the model by the caller (e.g. the
+        β-part of a derivative from :func:`~lkverify.symbolic.derivative.derivative_along`).
+    witness_time : number, optional
+        For time-varying systems: the time t at which witnesses are sought (every t ≥ t0
+        is admissible, so a violation at one is a refutation).
     """
 
     name: str
@@ -189,11 +195,15 @@ class TermwiseBound:
     witness_seconds: float = 5.0
     part: tuple | None = None
     exists: tuple = ()
+    terms: tuple = ()
+    witness_time: object = None
 
     def __post_init__(self):
         problems = []
-        if self.lhs not in ("V", "Vdot"):
-            problems.append(f"lhs: expected 'V' or 'Vdot', got {self.lhs!r}")
+        if self.lhs not in ("V", "Vdot", "terms"):
+            problems.append(f"lhs: expected 'V', 'Vdot' or 'terms', got {self.lhs!r}")
+        if self.lhs == "terms" and not self.terms:
+            problems.append("lhs 'terms' needs terms= the labelled terms computed from the model")
         if self.lhs == "Vdot" and self.derivation is None:
             problems.append("lhs 'Vdot' needs derivation= the DerivativeClaim of the structured V̇ (its terms are "
                             "the lhs)")
@@ -217,7 +227,8 @@ class TermwiseBound:
 
     def lhs_terms(self) -> list:
         """The labelled terms of lhs (the functional's, or the derivation's structured V̇)."""
-        terms = list(self.functional.terms if self.lhs == "V" else self.derivation.terms)
+        terms = list(self.functional.terms if self.lhs == "V" else self.terms if self.lhs == "terms"
+                     else self.derivation.terms)
         if self.part is not None:
             unknown = [p for p in self.part if p not in {t_.text for t_ in terms}]
             if unknown:
@@ -309,7 +320,7 @@ class TermwiseBound:
         for rewrite in tb.then:
             if bound is None:
                 break
-            nxt = rewrite.rewrite(bound, ctx) if isinstance(rewrite, Young) else rewrite.apply(bound, direction, ctx)
+            nxt = rewrite.rewrite(bound, ctx) if hasattr(rewrite, "rewrite") else rewrite.apply(bound, direction, ctx)
             apps.append(nxt)
             bound = nxt.bound
         for a in apps:
@@ -337,7 +348,14 @@ class TermwiseBound:
             sign = 1 if direction == "upper" else -1
             labelled = [Term(sign * ctx.at(term.expr), text=term.text) for label in tb.terms
                         for term in self.lhs_terms() if term.text == label]
-            witness = self._witness(labelled, stated, ctx)
+            # constants only claimed to exist stay symbols: the witness refutes every value of them
+            names = {str(c) for c in self.exists}
+            keep = {k: v for k, v in constants.items() if k not in names}
+            saved = ctx.constants
+            ctx.constants = {k: v for k, v in (saved or {}).items() if str(k) not in names}
+            generic = ctx.at(_put(tb.bound, keep))
+            ctx.constants = saved
+            witness = self._witness(labelled, generic, ctx)
         if witness is not None:
             from .rules import Printed
 
@@ -365,7 +383,8 @@ class TermwiseBound:
         try:
             return search_witness(lhs, rhs, system=self.system, values=ctx.values, measures=list(self.measures),
                                   region=self.region, exists=tuple(exists), nonnegative=nonneg,
-                                  budget=self.witness_seconds)
+                                  budget=self.witness_seconds,
+                                  **({} if self.witness_time is None else {"time": self.witness_time}))
         except InputError:
             return None
 

@@ -58,7 +58,8 @@ from ..matrices import matrix_positive_definite
 from .measures import Measure, Region
 
 __all__ = ["Application", "CauchySchwarz", "Context", "Equal", "Nonpositive", "Norm", "Printed", "Rayleigh", "Rule",
-           "Template", "WindowWeight", "Young", "crossed", "integral_of", "measured", "nonnegative", "scaled", "unit"]
+           "Template", "WindowWeight", "Young", "Homogeneous", "crossed", "integral_of", "mapped", "measured", "nonnegative",
+           "scaled", "summed", "unit"]
 
 
 #: how a Template rule certifies its supremum (as lkverify.certify.constants.ConstantsTuning's defaults)
@@ -227,6 +228,30 @@ def _constant_and_monomial(expr, symbols):
     return c, m
 
 
+def _factor_sign(c, measure_symbols) -> int | None:
+    """The sign of a factor: a constant of known sign times nonnegative measures, or structurally signed."""
+    c = sympy.sympify(c)
+    if nonnegative(c):
+        return 1
+    if nonnegative(-c):
+        return -1
+    cm = _constant_and_monomial(c, measure_symbols)
+    if cm is not None and nonnegative(cm[1]):
+        return _sign(cm[0])
+    return None
+
+
+def _abs_factor(c, measure_symbols):
+    """|c| as an expression: ±c when the sign is known, else |constant|·(nonnegative measures)."""
+    sign = _factor_sign(c, measure_symbols)
+    if sign is not None:
+        return sign * sympy.sympify(c)
+    cm = _constant_and_monomial(c, measure_symbols)
+    if cm is not None and nonnegative(cm[1]):
+        return sympy.Abs(cm[0]) * cm[1]
+    return None
+
+
 def _sign(expr) -> int | None:
     """+1 (≥ 0), −1 (≤ 0) or None, for a constant expression (parameters with assumptions allowed)."""
     e = sympy.sympify(expr)
@@ -251,6 +276,7 @@ class Norm:
     bound: object
     parts: tuple = ()
     conditions: tuple = ()
+    data: tuple = ()
 
     def all_conditions(self) -> list:
         out = list(self.conditions)
@@ -263,7 +289,7 @@ class Norm:
 def measured(measure: Measure, *, at=None) -> Norm:
     """‖v‖ = the measure, for its own vector (``at=xi``: pointwise inside a window integral)."""
     if measure.kind == "norm" and at is None:
-        return Norm(f"‖{measure.text}‖ = {measure.name}", measure.vector, measure.symbol)
+        return Norm(f"{measure.text} = {measure.name}", measure.vector, measure.symbol)
     if measure.kind == "sup":
         raise InputError(f"measured({measure.name}): a sup measure bounds norms pointwise; use it in a region")
     vec = measure.vector if measure.kind != "norm" else measure.vector.subs(t, xi)
@@ -288,6 +314,21 @@ def scaled(factor, inner: Norm) -> Norm:
                  "" if nonnegative(c) else "not shown nonnegative")
     return Norm(f"|c|·‖v‖ (c = {c})", sympy.ImmutableMatrix(sympy.Matrix(inner.vector) * c), c * inner.bound,
                 (inner,), (cond,))
+
+
+def summed(*parts: Norm) -> Norm:
+    """‖a + b + …‖ ≤ ‖a‖ + ‖b‖ + … (the triangle inequality)."""
+    vec = sympy.zeros(*sympy.Matrix(parts[0].vector).shape)
+    for p in parts:
+        vec += sympy.Matrix(p.vector)
+    bound = None if any(p.bound is None for p in parts) else sum((p.bound for p in parts), sympy.S.Zero)
+    return Norm("‖a+b‖ ≤ ‖a‖+‖b‖", sympy.ImmutableMatrix(vec), bound, parts)
+
+
+def mapped(matrix, inner: Norm, operator_norm) -> Norm:
+    """‖M v‖ ≤ κ‖v‖ with κ ≥ ‖M‖ (κ²I − MᵀM ⪰ 0, decided where it is used); κ may be a callable of the context."""
+    return Norm("‖Mv‖ ≤ κ‖v‖", sympy.ImmutableMatrix(sympy.Matrix(matrix) * sympy.Matrix(inner.vector)), None,
+                (inner,), data=(sympy.ImmutableMatrix(matrix), operator_norm))
 
 
 def integral_of(pointwise: Norm, *, measure: Measure, power, weight=1, window=None, holder=None) -> Norm:
@@ -403,6 +444,21 @@ def _resolve_norm(nb: Norm, vector, ctx: Context) -> tuple:
             return None, conds
         factor, mpow = fac
         return factor * measure.symbol ** mpow, conds
+    if nb.how.startswith("‖Mv‖"):
+        (inner,), (Mraw, kappa_raw) = nb.parts, nb.data
+        M = sympy.Matrix(ctx.at(sympy.Matrix(Mraw)))
+        kappa = ctx.at(kappa_raw)
+        target = M * sympy.Matrix(ctx.at(sympy.Matrix(inner.vector)))
+        if target.shape != vec.shape or not all(ctx.zero(x) for x in vec - target):
+            return None, [_cond("the vector is M·v (‖Mv‖ ≤ κ‖v‖)", False, f"{list(vec)} is not {list(target)}")]
+        res = matrix_positive_definite(kappa**2 * sympy.eye(M.shape[1]) - M.T * M, name="κ²I − MᵀM",
+                                       semidefinite=True)
+        conds.append(Condition(f"κ = {kappa} ≥ ‖M‖ (κ²I − MᵀM ⪰ 0)", res.status if res.status.is_proof else
+                               (Status.FAILED if res.status is Status.FAILED else Status.UNDECIDED),
+                               "" if res.status.is_proof else f"the operator norm is larger: {res.detail}"))
+        bi, ci = _resolve_norm(inner, inner.vector, ctx)
+        conds += ci
+        return (None if bi is None else kappa * bi), conds
     target = sympy.Matrix(ctx.at(sympy.Matrix(nb.vector)))
     if target.shape != vec.shape or not all(ctx.zero(x) for x in vec - target):
         return None, [_cond(f"the vector matches the norm bound's ({nb.how})", False,
@@ -411,6 +467,15 @@ def _resolve_norm(nb: Norm, vector, ctx: Context) -> tuple:
     if nb.how == "unit vector":
         conds.append(_cond("it is a unit vector", _is_unit(vec, ctx), "not a unit state or unit parameter"))
         return sympy.S.One, conds
+    if nb.how.startswith("‖a+b‖"):
+        total = sympy.S.Zero
+        for part in nb.parts:
+            bp, cp = _resolve_norm(part, part.vector, ctx)
+            conds += cp
+            if bp is None:
+                return None, conds
+            total += bp
+        return total, conds
     if nb.how.startswith("‖a×b‖"):
         a, b = nb.parts
         ba, ca = _resolve_norm(a, a.vector, ctx)
@@ -513,9 +578,7 @@ class Rayleigh(Rule):
         conds = [_cond("M is symmetric", M == M.T, "M ≠ Mᵀ")]
         conds.append(_cond(f"the term is ({self.factor})·uᵀMu", ctx.zero(ctx.definitions(c) * (u.T * M * u)[0]
                                                                           - ctx.at(term)), "it is not"))
-        syms = [m.symbol for m in ctx.measures.values()]
-        cm = _constant_and_monomial(c, syms)
-        sign = None if cm is None else _sign(cm[0])
+        sign = _factor_sign(c, [m.symbol for m in ctx.measures.values()])
         if sign is None:
             conds.append(_cond("the factor's sign is known", None, f"{c}"))
             return Application(self.name, None, tuple(conds))
@@ -571,15 +634,14 @@ class CauchySchwarz(Rule):
         bu, cu = _resolve_norm(self.norms[0], u, ctx)
         bv, cv = _resolve_norm(self.norms[1], v, ctx)
         conds += cu + cv
-        syms = [m.symbol for m in ctx.measures.values()]
-        cm = _constant_and_monomial(c, syms)
-        if cm is None or _sign(cm[0]) is None:
-            conds.append(_cond("the factor is a constant of known sign times measures", None, f"{c}"))
+        absc = _abs_factor(c, [m.symbol for m in ctx.measures.values()])
+        if absc is None:
+            conds.append(_cond("|factor| is known (a constant times nonnegative measures, or of known sign)", None,
+                               f"{c}"))
             return Application(self.name, None, tuple(conds))
-        absc = abs(cm[0]) if cm[0].is_number else (cm[0] if _sign(cm[0]) == 1 else -cm[0])
         if bu is None or bv is None:
             return Application(self.name, None, tuple(conds))
-        bound = sympy.expand(absc * cm[1] * kappa * bu * bv)
+        bound = sympy.expand(absc * kappa * bu * bv)
         return Application(self.name, bound if direction == "upper" else -bound, tuple(conds))
 
 
@@ -649,6 +711,73 @@ class Young(Rule):
                  _cond("x, y ≥ 0", nonnegative(x) and nonnegative(y))]
         bound = sympy.expand(c * (eps * x**p / p + eps ** (-q / p) * y**q / q))
         return Application(self.name, bound, tuple(conds))
+
+    def apply(self, term, direction, ctx):
+        return self.rewrite(ctx.at(term), ctx)
+
+
+@dataclasses.dataclass(frozen=True)
+class Homogeneous(Rule):
+    """factor·g(x) ≤ factor·κ·T(x) for g, T homogeneous of one degree in the measures x, T > 0 off 0.
+
+    A direct certificate in finitely many variables, applied after another rule
+    (``then=``): the previous bound must be ``factor·g(x)``; the ratio g(ρx)/T(ρx) must be
+    that at x (homogeneity, checked exactly), so κ = sup g/T over x ≥ 0, x ≠ 0 is its
+    supremum on the faces max_k x_k = 1 of the unit cube, certified there with arb.
+    ``constant`` names κ.
+    """
+
+    variables: tuple
+    template: object
+    constant: str
+    factor: object = 1
+    name = "homogeneity and a certified supremum on the faces of the unit cube (finitely many variables)"
+
+    def rewrite(self, previous, ctx) -> Application:
+        from ..bounds import sup_bound
+        from ...options import Budget
+
+        xs = [ctx.measure(n).symbol for n in self.variables]
+        factor, T = ctx.at(self.factor), ctx.at(self.template)
+        g = sympy.simplify(ctx.at(previous) / factor)
+        conds = [_cond(f"the bound is ({self.factor})·g({', '.join(self.variables)})",
+                       not (g.free_symbols & ({m.symbol for m in ctx.measures.values()} - set(xs))),
+                       f"g = {g} involves other measures")]
+        if not conds[0].status.is_proof:
+            return Application(self.name, None, tuple(conds))
+        rho = sympy.Symbol("rho_h", positive=True)
+        pos = {x: sympy.Symbol(x.name, positive=True) for x in xs}
+        ratio = (g / T).xreplace(pos)
+        scaled_ratio = ratio.xreplace({pos[x]: rho * pos[x] for x in xs})
+        free = sympy.simplify(sympy.powsimp(sympy.expand_power_base(scaled_ratio / ratio, force=True), force=True))
+        conds.append(_cond(f"g and T = {T} are homogeneous of one degree", free == 1, f"g(ρx)/T(ρx) ÷ g/T = {free}"))
+        if not conds[-1].status.is_proof:
+            return Application(self.name, None, tuple(conds))
+        # by homogeneity the supremum over x ≠ 0, x ≥ 0 is the one over the faces max_k x_k = 1 of the unit cube
+        res, best = None, None
+        for k, x in enumerate(xs):
+            others = {pos[y]: sympy.Symbol(f"{y.name}_f", nonnegative=True) for y in xs if y != x}
+            on_face = ratio.xreplace({pos[x]: sympy.S.One, **others})
+            box = {v: (0, 1) for v in others.values()}
+            r = sup_bound(on_face, box, accuracy=TEMPLATE_ACCURACY,
+                          budget=Budget(seconds=30.0, boxes=TEMPLATE_BOXES), enclosure=TEMPLATE_ENCLOSURE)
+            if r.certified is None or not r.certified < float("inf"):
+                res = r
+                best = None
+                break
+            if best is None or r.certified > best.certified:
+                best = r
+        res = best if best is not None else res
+        proved = best is not None
+        conds.append(_cond(f"κ = sup g/T = {res.certified:.6g} certified on the faces max x_k = 1 (estimate "
+                           f"{res.estimate:.6g})" if proved else "κ certified", proved or None,
+                           "no finite certified bound", certified=True))
+        if not proved:
+            return Application(self.name, None, tuple(conds))
+        kappa = sympy.Rational(res.certified)
+        info = {"estimate": res.estimate, "certified": res.certified, "gap": res.gap, "boxes": res.boxes}
+        return Application(self.name, sympy.expand(factor * kappa * T), tuple(conds),
+                           ((self.constant, res.certified, info),))
 
     def apply(self, term, direction, ctx):
         return self.rewrite(ctx.at(term), ctx)

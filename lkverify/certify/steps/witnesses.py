@@ -27,8 +27,11 @@ constant on a piece and the integrand's explicit ξ-dependence (weights such as
 ``ξ + τ − t``) is integrated exactly — by a closed Newton–Cotes rule of the weight's
 degree, which is exact for polynomials (the weight is polynomial in ξ for every claim
 of the papers; other weights go through ``sympy.integrate``).  Then ``t = 0`` is set
-(the claims are autonomous; an explicit t that does not cancel raises
-:class:`~lkverify.errors.InputError`: time-varying claims are not supported yet).
+for an autonomous claim; an explicit t that does not cancel (a time-varying coefficient
+h(t) or its derivative ḣ(t), which ``values`` turn into functions of t) needs the witness
+time ``time=``: t is set to that number before the pieces are summed (the windows are
+[time − h, time − h']), or ``time=(lo, hi)`` searches it as one more parameter (the exact
+recheck at a rational time in [lo, hi]); without it :class:`~lkverify.errors.InputError`.
 
 Why a strict violation at a piecewise-constant history refutes the claim: let
 ``x̂`` be the piecewise-constant history with the chosen point values.  Join
@@ -44,7 +47,10 @@ are bounded, so every window integral and window measure changes by O(ε) (the
 integrands are continuous on the compact admissible set).  The violation ``lhs − rhs``
 is a continuous function of these finitely many numbers, so a violation > 0 at ``x̂``
 persists for ε small enough: the claim fails at a continuous, piecewise-smooth
-admissible history.  (For a region cap of radius ≥ √2 the joins can be taken inside the
+admissible history.  A frame is joined through its reference triad: from ``Q R0`` the
+path ``Q(λ) R0``, Q(λ) the rotation by λθ about Q's axis n, has ``‖s_i − r_i‖ =
+2 sin(λθ/2)‖n × r_i‖``, increasing in λ, so both halves of a join stay in the region and
+its sups are again the larger end values.  (For a region cap of radius ≥ √2 the joins can be taken inside the
 sub-cap of the larger end value — caps are path-connected — but a ``sup`` measure about
 another centre is then only bounded below by the reported maximum.)
 
@@ -55,30 +61,49 @@ e2) the exact orthonormal basis of r⊥ of :func:`~lkverify.certify.charts.unit_
 and ``ρ = ρmax sin² u``, ``2 sin(ρmax/2) = d``; elsewhere by the same chart around
 (0, 0, 1) with ρmax = π.  A vector with a region bound ``‖ω − c‖ ≤ δ`` is
 ``c + δ sin²(u) · (a unit direction in angles)``; an unbounded vector has free
-components.  The optimisation variables are thus unconstrained and map smoothly into
-the admissible set; the rational recheck point is admissible by construction.
+components.
+
+A **frame** (``state.frame``: s1, s2, s3 orthonormal with s3 = s1 × s2) is one rotation:
+``s_i = Q r_i`` with ``R0 = [r1 r2 r3]`` its reference — the centres of the region bounds
+on its vectors, completed by r3 = r1 × r2 (cyclically) or an exact orthonormal basis, or
+I without bounds — and Q the Cayley rotation ``I + 2(K + K²)/(1 + ‖k‖²)``, ``K = [k]×``, of
+``k = tan(θ/2) n``: n a direction in angles and ``θ = θmax(n) sin² u``, θmax(n) the largest
+angle about n keeping every bounded vector in its cap (``‖Q r_i − r_i‖ = 2 sin(θ/2)‖n ×
+r_i‖``).  At the recheck k is rational, so Q is exactly orthogonal with rational entries and
+the triad exactly orthonormal and right-handed; admissibility ``4‖k × r_i‖² ≤ δ_i²(1 +
+‖k‖²)`` is checked exactly (k shrunk towards 0 if rounding left the cap).  Delayed values
+and history pieces of a frame are rotations of the same kind.
+
+The optimisation variables are thus unconstrained and map smoothly into the admissible
+set; the rational recheck point is admissible (by construction, or checked exactly).
 
 Constants that are "some c ≥ 0" (``exists``) or free nonnegative symbols
 (``nonnegative``, e.g. λ) must enter affinely: ``lhs − rhs = A + Σ B_k c_k``.  The claim
 is refuted for every value of them when ``A > 0`` and every ``B_k ≥ 0`` (rigorously);
 the search maximises ``min(A, B_1, …)`` and :attr:`Witness.violation` encloses A, the
-value at all c_k = 0 (and the infimum over them).
+value at all c_k = 0 (and the infimum over them).  A constant whose symbol is positive
+(γ > 0 of ``P.scalar(..., positive=True)``) and that divides ``lhs − rhs`` (it vanishes at
+γ = 0 and is linear in γ) is first divided out — the sign is the quotient's — so
+``γ(A + B c7)`` is refuted for every γ > 0 and c7 ≥ 0 (:attr:`Witness.violation` then
+encloses the quotient; ``exact["factors"]`` names γ).
 
 The search builds the exact parametric expression once per piece count, lambdifies it
 (vectorised over points, so a finite-difference gradient or a line search costs one
 call), and runs a small BFGS ascent from ``starts`` random starts (``numpy.random.default_rng(seed)``), every second
-one a *rotation start*: the history pieces along a rotation of the value at t in a
-random plane (for unit vectors often the plane through the centre r, the papers'
-counterexample), with an angle profile of one or several modes.  Piece counts are
+one a *rotation start* (when a state has a history or delayed values): the history
+pieces and delayed values along a rotation of the value at t in a random plane (for
+unit vectors often the plane through the centre r, the papers' counterexample; for
+frames about a random axis or one of r1, r2, r3), with an angle profile of one or
+several modes (for frames also turning t and the oldest time in opposite senses).  Piece counts are
 tried in order and the first that yields a rechecked witness wins.  Candidates whose
 float violation is below about 10⁻¹³ of the size of the terms are rounding noise and
 are not rechecked, so violations that small are not found.
 
 Errors: bad arguments raise :class:`~lkverify.errors.InputError` ("expected / got /
-how to fix").  Claims outside the witness family — frames (``state.frame``), unit
-vectors of dimension ≠ 3, nested or merged integrals, memory integrals, states at future
-times or at shifted ξ under an integral, derivatives of states, region bounds of other
-forms — raise :class:`UnsupportedClaim`, which is both an
+how to fix").  Claims outside the witness family — unit vectors of dimension ≠ 3,
+nested or merged integrals, memory integrals, states at future times or at shifted ξ
+under an integral, derivatives of states, region bounds of other forms (for a frame:
+bounds about centres that are not orthonormal) — raise :class:`UnsupportedClaim`, which is both an
 :class:`~lkverify.errors.UnsupportedInput` and an :class:`~lkverify.errors.InputError`
 (a caller may catch either and report ``undecided``).  ``None`` means: searched, nothing
 rechecked (the claim may well be true).
@@ -123,6 +148,7 @@ from ...errors import InputError, UnsupportedInput
 from ...options import Budget, Deadline
 from ..intervals.convert import enclose
 from ..intervals.rounding import float_down, float_up
+from ..regions import prove_zero
 from .measures import Measure, Region
 
 __all__ = ["UnsupportedClaim", "Witness", "search_witness"]
@@ -155,7 +181,8 @@ class Witness:
     ----------
     violation : tuple of float
         ``(lo, hi)``, an outward-rounded enclosure of ``lhs − rhs`` at the exact witness
-        (with every ``exists`` / ``nonnegative`` constant at 0); ``lo > 0``.
+        (with every ``exists`` / ``nonnegative`` constant at 0, divided by the positive
+        factors of ``exact["factors"]``); ``lo > 0``.
     state : dict
         ``"s_x(t)"``, ``"s_x(t - 1)"`` … → value (the state at t and at delayed times).
     history : dict
@@ -164,10 +191,14 @@ class Witness:
         Measure name → value at the witness.
     terms : dict
         Term label → value (``"lhs"`` for a plain expression), ``"rhs"`` → value; a term
-        that depends on a constant c also has ``"label [coefficient of c]"``.
+        that depends on a constant c also has ``"label [coefficient of c]"`` (a factored
+        positive constant is taken as 1).
     exact : dict
-        What reproduces the witness exactly: ``"t"``, ``"pieces"``, ``"breakpoints"``, the
-        rational chart parameters and the exact vectors (strings).
+        What reproduces the witness exactly: ``"t"`` (the witness time; ``"0"`` for an
+        autonomous claim), ``"time"`` (``"autonomous"``, ``"given"`` or ``"searched in
+        [lo, hi]"``), ``"factors"`` (positive constants divided out), ``"pieces"``,
+        ``"breakpoints"``, the rational chart parameters (for a frame: the Cayley vector
+        k) and the exact vectors (strings; a frame's nine components s1, s2, s3).
     coefficients : dict
         Constant name → ``(lo, hi)`` enclosure of its coefficient ``B_k ≥ 0`` in
         ``lhs − rhs`` (empty without ``exists`` / ``nonnegative``).
@@ -223,11 +254,16 @@ class Witness:
                          + " (" + "; ".join(f"{texts.get(k, k)}: " + ", ".join(
                              "(" + ", ".join(f"{c:.3g}" for c in piece) + ")" for piece in v)
                              for k, v in self.history.items()) + ")")
+        if self.exact.get("time", "autonomous") != "autonomous":
+            parts.insert(0, f"at t = {self.exact.get('t')}")
         line = ", ".join(parts)
         lo, hi = self.violation
-        line += ("; " if line else "") + f"lhs − rhs ∈ [{lo:.6g}, {hi:.6g}] > 0"
-        if self.coefficients:
-            line += " for every " + ", ".join(f"{c} ≥ 0" for c in self.coefficients)
+        factors = list(self.exact.get("factors", ()))
+        head = "lhs − rhs" if not factors else f"(lhs − rhs)/{'·'.join(factors)}"
+        line += ("; " if line else "") + f"{head} ∈ [{lo:.6g}, {hi:.6g}] > 0"
+        every = [f"{c} > 0" for c in factors] + [f"{c} ≥ 0" for c in self.coefficients]
+        if every:
+            line += " for every " + ", ".join(every)
         return line
 
 
@@ -348,6 +384,189 @@ class _Chart:
             return rng.normal(size=self.dim) * rng.choice([0.1, 1.0, 3.0])
         return np.zeros(0)
 
+    def numeric(self, P: np.ndarray) -> list:
+        """The values (one array per component) at the parameter columns ``P`` (shape (nparams, N))."""
+        if getattr(self, "_lambdified", None) is None:
+            syms = [sympy.Symbol(f"_cp{i}", real=True) for i in range(self.nparams)]
+            self._lambdified = sympy.lambdify(syms, self.expr(syms), modules="numpy", cse=True)
+        return self._lambdified(*P)
+
+    def exact(self, p: np.ndarray) -> tuple:
+        """``(record, values)`` at the rational point near ``p``: the rational parameters (strings) and the
+        exact value (one SymPy number per component), admissible by construction."""
+        q = [sympy.Rational(float(x)).limit_denominator(_DENOMINATOR) for x in p]
+        return [str(x) for x in q], self.expr(q)
+
+
+def _skew_np(k: np.ndarray) -> np.ndarray:
+    """``[k]×`` for the columns of ``k`` (shape (3, N)) → shape (3, 3, N)."""
+    z = np.zeros_like(k[0])
+    return np.array([[z, -k[2], k[1]], [k[2], z, -k[0]], [-k[1], k[0], z]])
+
+
+def _cayley_np(k: np.ndarray) -> np.ndarray:
+    """The Cayley rotations ``I + 2(K + K²)/(1 + ‖k‖²)``, ``K = [k]×``, for the columns of ``k`` → (3, 3, N)."""
+    K = _skew_np(k)
+    K2 = np.einsum("ijn,jln->iln", K, K)
+    return np.eye(3)[:, :, None] + 2 * (K + K2) / (1 + np.sum(k ** 2, axis=0))
+
+
+def _cayley_exact(k) -> sympy.ImmutableMatrix:
+    """The Cayley rotation of a rational 3-vector ``k``: exactly orthogonal, det 1, rational entries."""
+    K = sympy.Matrix([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    return sympy.ImmutableMatrix(sympy.eye(3) + 2 * (K + K * K) / (1 + sum(x ** 2 for x in k)))
+
+
+def _rotation_np(a: np.ndarray, phi: float) -> np.ndarray:
+    """The rotation by ``phi`` about the unit axis ``a`` (Rodrigues)."""
+    A = _skew_np(a[:, None])[:, :, 0]
+    return np.eye(3) + math.sin(phi) * A + (1 - math.cos(phi)) * A @ A
+
+
+#: the largest rotation angle of a frame chart, as a fraction of π (Cayley's k = tan(θ/2)·n stays finite)
+_FRAME_TOP = 0.999
+
+
+class _FrameChart:
+    """Frames ``s_i = Q r_i`` (i = 1, 2, 3) with ``R0 = [r1 r2 r3]`` a reference rotation and Q a rotation.
+
+    Q is the Cayley rotation of ``k = tan(θ/2)·n``: ``Q = I + 2(K + K²)/(1 + ‖k‖²)``, ``K = [k]×``,
+    the rotation by θ about n.  The parameters are ``(u, a1, a2)``: ``n = direction(a1, a2)`` and
+    ``θ = θmax(n)·sin²(u)``, where θmax(n) is the largest angle about n for which every bounded
+    vector stays inside its cap: ``‖Q r_i − r_i‖ = 2 sin(θ/2)·‖n × r_i‖ ≤ δ_i``, increasing in θ,
+    so the map is onto the admissible set (up to rotations by more than :data:`_FRAME_TOP`·π).
+    At the exact point k is rational, so Q is exactly orthogonal with rational entries and the
+    triad exactly orthonormal and right-handed; admissibility ``4‖k × r_i‖² ≤ δ_i²(1 + ‖k‖²)``
+    (the same identity) is checked exactly, k shrunk towards 0 if rounding left the cap.
+    """
+
+    kind = "frame"
+    dim = 9
+    nparams = 3
+    center = None
+
+    def __init__(self, reference, bounds: dict):
+        self.reference = sympy.ImmutableMatrix(reference)
+        self.bounds = dict(bounds)               # vector index (0, 1, 2) → δ
+        self._R0 = np.array([[float(x) for x in row] for row in self.reference.tolist()])
+        self._bounds = [(i, float(d)) for i, d in sorted(self.bounds.items())]
+        self._top = min([math.pi * _FRAME_TOP] + [2 * math.asin(min(1.0, d / 2)) for _, d in self._bounds])
+
+    def describe(self) -> str:
+        cols = [list(self.reference[:, i]) for i in range(3)]
+        caps = ", ".join(f"‖s{i + 1} − r{i + 1}‖ ≤ {d}" for i, d in sorted(self.bounds.items())) or "none"
+        return (f"s_i = Q r_i, Q = I + 2(K + K²)/(1 + ‖k‖²), K = [k]× (Cayley; the parameters are k), "
+                f"r1, r2, r3 = {cols}; k = tan(θ/2)·n(a1, a2), θ = θmax(n)·sin(u)², caps: {caps}")
+
+    def _theta_max(self, n: np.ndarray) -> np.ndarray:
+        top = np.full(n.shape[1:], math.pi * _FRAME_TOP)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            for i, d in self._bounds:
+                sin = np.linalg.norm(np.cross(n, self._R0[:, i][:, None], axis=0), axis=0)
+                ratio = np.where(sin > 0, d / (2 * np.where(sin > 0, sin, 1.0)), np.inf)
+                top = np.minimum(top, 2 * np.arcsin(np.minimum(1.0, ratio)))
+        return top
+
+    def _k(self, P: np.ndarray) -> np.ndarray:
+        u, a1, a2 = P
+        n = np.array(np.broadcast_arrays(*_direction([a1, a2], np)), dtype=float)
+        theta = self._theta_max(n) * np.sin(u) ** 2
+        return np.tan(theta / 2) * n
+
+    def numeric(self, P: np.ndarray) -> list:
+        P = np.asarray(P, dtype=float)
+        Q = _cayley_np(self._k(P))
+        S = np.einsum("ijn,jl->iln", Q, self._R0)          # S[:, l] = Q r_l
+        return [S[a, l] for l in range(3) for a in range(3)]
+
+    def value(self, p: np.ndarray) -> np.ndarray:
+        return np.array([v[0] for v in self.numeric(np.asarray(p, dtype=float).reshape(3, 1))])
+
+    def _admissible(self, k) -> bool:
+        kk = sympy.Matrix(k)
+        for i, d in self.bounds.items():
+            gap = sympy.expand(d ** 2 * (1 + kk.dot(kk)) - 4 * _norm2(kk.cross(self.reference[:, i])))
+            if gap.is_Rational:
+                if gap < 0:
+                    return False
+            elif not enclose(gap, prec=_PREC) >= 0:
+                return False
+        return True
+
+    def exact(self, p: np.ndarray) -> tuple:
+        k = self._k(np.asarray(p, dtype=float).reshape(3, 1))[:, 0]
+        q = [sympy.Rational(float(x)).limit_denominator(_DENOMINATOR) for x in k]
+        for j in range(8):
+            if self._admissible(q):
+                break
+            shrink = 1 - sympy.Rational(1, 10 ** 6) * 4 ** j
+            q = [x * shrink for x in q]
+        else:  # pragma: no cover - the shrunk point is inside unless it sits on the boundary
+            q = [sympy.Integer(0)] * 3
+        S = _cayley_exact(q) * self.reference
+        return [str(x) for x in q], [S[a, l] for l in range(3) for a in range(3)]
+
+    def inverse(self, v: np.ndarray) -> np.ndarray:
+        T = np.asarray(v, dtype=float).reshape(3, 3).T          # columns s1, s2, s3
+        U, _, Vt = np.linalg.svd(T @ self._R0.T)
+        Q = U @ Vt
+        if np.linalg.det(Q) < 0:
+            Q = U @ np.diag([1, 1, -1]) @ Vt
+        theta = math.acos(min(1.0, max(-1.0, (float(np.trace(Q)) - 1) / 2)))
+        if theta < 1e-12:
+            return np.zeros(3)
+        w = np.array([Q[2, 1] - Q[1, 2], Q[0, 2] - Q[2, 0], Q[1, 0] - Q[0, 1]])
+        if math.sin(theta) > 1e-6:
+            n = w / (2 * math.sin(theta))
+        else:                                                   # θ ≈ π: the axis from Q + I
+            B = Q + np.eye(3)
+            n = B[:, int(np.argmax(np.linalg.norm(B, axis=0)))]
+        n = n / (np.linalg.norm(n) or 1.0)
+        top = float(self._theta_max(n[:, None])[0])
+        u = math.asin(math.sqrt(min(1.0, theta / top))) if top > 0 else 0.0
+        return np.concatenate([[u], _angles(n)])
+
+    def random(self, rng: np.random.Generator) -> np.ndarray:
+        return np.concatenate([[rng.uniform(0, math.pi / 2)], _angles(_unit(rng, 3))])
+
+
+class _TimeChart:
+    """The witness time ``t = lo + (hi − lo) sin²(u)``; the exact time is a rational in [lo, hi]."""
+
+    kind = "time"
+    dim = 1
+    nparams = 1
+    center = None
+
+    def __init__(self, lo, hi):
+        self.lo, self.hi = lo, hi
+        self._lo, self._hi = float(lo), float(hi)
+
+    def describe(self) -> str:
+        return f"t = {self.lo} + ({self.hi} − {self.lo})·sin(u)²"
+
+    def numeric(self, P: np.ndarray) -> list:
+        return [self._lo + (self._hi - self._lo) * np.sin(np.asarray(P[0], dtype=float)) ** 2]
+
+    def value(self, p: np.ndarray) -> np.ndarray:
+        return np.array([self._lo + (self._hi - self._lo) * math.sin(float(p[0])) ** 2])
+
+    def exact(self, p: np.ndarray) -> tuple:
+        q = sympy.Rational(float(self.value(p)[0])).limit_denominator(_DENOMINATOR)
+        q = self.lo if _lt(q, self.lo) else self.hi if _lt(self.hi, q) else q
+        return [str(q)], [q]
+
+    def inverse(self, v: np.ndarray) -> np.ndarray:
+        x = (float(np.asarray(v).ravel()[0]) - self._lo) / (self._hi - self._lo)
+        return np.array([math.asin(math.sqrt(min(1.0, max(0.0, x))))])
+
+    def random(self, rng: np.random.Generator) -> np.ndarray:
+        return np.array([rng.uniform(0, math.pi / 2)])
+
+
+def _norm2(v) -> sympy.Expr:
+    return sympy.Add(*[x ** 2 for x in v])
+
 
 def _direction(a, lib) -> list:
     """The unit vector of hyperspherical angles ``a`` (len n − 1) in R^n."""
@@ -404,19 +623,72 @@ class _Constraint:
     window: sympy.Expr | None
     center: sympy.ImmutableMatrix
     bound: sympy.Expr
+    vector: int | None = None   # for a frame: which of its vectors (0, 1, 2) is bounded
+
+
+class _FrameGroup:
+    """The three vectors of a :class:`~lkverify.declare.states.Frame` as one 9-component state (one rotation)."""
+
+    is_frame = True
+    unit = False
+    frame = None
+
+    def __init__(self, frame):
+        self.vectors = tuple(frame.vectors)
+        self.name = ",".join(v.name for v in self.vectors)
+        self.text = "(" + ", ".join(v.text for v in self.vectors) + ")"
+        self.dim = 9
+        self.functions = tuple(f for v in self.vectors for f in v.functions)
+        self.reference = sympy.ImmutableMatrix(sympy.eye(3))
+
+    def __repr__(self) -> str:
+        return f"frame({self.name})"
+
+
+def _time_argument(time):
+    """``(fixed, (lo, hi))`` from the ``time=`` argument: a number, a pair or None."""
+    def number(x, what):
+        if isinstance(x, bool) or isinstance(x, str):
+            raise InputError(f"time: expected a real number such as 1 or a pair (lo, hi), got {what} {x!r}")
+        if isinstance(x, float):
+            if not math.isfinite(x):
+                raise InputError(f"time: expected a finite real number, got {x!r}")
+            return sympy.Rational(x)
+        try:
+            v = sympy.sympify(x, strict=True)
+        except (sympy.SympifyError, TypeError) as exc:
+            raise InputError(f"time: expected a real number such as 1 or a pair (lo, hi), got {x!r}") from exc
+        if not isinstance(v, sympy.Expr) or v.free_symbols or not v.is_number or v.is_real is not True \
+                or v.has(sympy.oo, -sympy.oo, sympy.zoo, sympy.nan):
+            raise InputError(f"time: expected a finite real number, got {x!r}")
+        return sympy.nsimplify(v) if v.atoms(sympy.Float) else v
+
+    if time is None:
+        return None, None
+    if isinstance(time, (tuple, list)):
+        if len(time) != 2:
+            raise InputError(f"time: expected a number or a pair (lo, hi), got a sequence of length {len(time)}")
+        lo, hi = number(time[0], "the lower end"), number(time[1], "the upper end")
+        if not _lt(lo, hi):
+            raise InputError(f"time: expected lo < hi in (lo, hi), got ({lo}, {hi}); give a single number for one "
+                             f"time")
+        return None, (lo, hi)
+    return number(time, "the time"), None
 
 
 @dataclasses.dataclass
 class _Slot:
-    state: object
-    where: tuple            # ("point", c) or ("piece", k)
+    state: object           # a state, a frame (_FrameGroup), or None for the witness time
+    where: tuple            # ("point", c), ("piece", k) or ("time", 0)
     z: tuple                # one symbol per component
-    chart: _Chart
+    chart: object           # _Chart, _FrameChart or _TimeChart
     start: int              # first index of the chart's parameters
 
     @property
     def label(self) -> str:
         kind, c = self.where
+        if kind == "time":
+            return "t"
         if kind == "point":
             return f"{self.state.name}(t)" if c == 0 else f"{self.state.name}(t - {c})"
         return f"{self.state.name}[piece {c}]"
@@ -525,7 +797,7 @@ def _lt(a, b) -> bool:
 class _Problem:
     """Everything about the claim that does not depend on the number of pieces."""
 
-    def __init__(self, lhs, rhs, system, values, measures, region, exists, nonnegative):
+    def __init__(self, lhs, rhs, system, values, measures, region, exists, nonnegative, time=None):
         if not isinstance(system, System):
             raise InputError(f"system: expected an lkverify System, got {type(system).__name__}")
         if not isinstance(values, Mapping):
@@ -543,7 +815,15 @@ class _Problem:
             raise InputError(f"region: expected a Region or None, got {type(region).__name__}")
         self.system = system
         self._charts: dict = {}
-        self.funcs = system.state_functions()
+        self.time, self.time_range = _time_argument(time)
+        # the state of each component function; a frame's three vectors are one state (a rotation)
+        self.funcs = dict(system.state_functions())
+        self.groups: dict = {}
+        for st in system.states:
+            if st.frame is not None and id(st.frame) not in self.groups:
+                group = self.groups[id(st.frame)] = _FrameGroup(st.frame)
+                for i, f in enumerate(group.functions):
+                    self.funcs[f] = (group, i)
         try:
             sub = system.parameters.substitution(values)
         except KeyError as exc:
@@ -599,12 +879,13 @@ class _Problem:
                     self.points.setdefault((st, sympy.Integer(0)), set())
                 if m.kind in ("window_norm", "window_integral"):
                     self._history(st)
-        self.states = [st for st in system.states if st in {s for s, _ in self.points} | set(self.history_states)]
+        used = {s for s, _ in self.points} | set(self.history_states)
+        self.states = []
+        for st in system.states:
+            st = self.groups[id(st.frame)] if st.frame is not None else st
+            if st in used and st not in self.states:
+                self.states.append(st)
         for st in self.states:
-            if st.frame is not None:
-                raise UnsupportedClaim(f"state {st.name}: expected a vector or a unit vector, got a vector of a frame; "
-                                       f"witnesses for frames (rotations) are not supported yet — the step stays "
-                                       f"undecided")
             if st.unit and st.dim != 3:
                 raise UnsupportedClaim(f"state {st.name}: expected a unit vector of dimension 3, got dimension "
                                        f"{st.dim}; other spheres are not supported yet")
@@ -613,6 +894,9 @@ class _Problem:
         hs += [self.mdata[m.name][1] for m in measures if m.kind in ("window_norm", "window_integral")]
         self.H = max(hs, key=float) if hs and self.history_states else sympy.Integer(0)
         self.constraints = self._constraints(region)
+        for st in self.states:
+            if getattr(st, "is_frame", False):
+                st.reference = self._frame_reference(st)
         breaks = {sympy.Integer(0), self.H}
         for i in self.integrals.values():
             breaks |= {i.h1, i.h2}
@@ -623,6 +907,9 @@ class _Problem:
             if c.kind == "sup":
                 breaks.add(c.window)
         self.breaks = {b for b in breaks if not _lt(self.H, b)}
+        #: the states of rotation starts: those with a history or with delayed values
+        self.rotating = list(self.history_states) + [
+            st for st in self.states if st not in self.history_states and any(s2 is st and c != 0 for s2, c in self.points)]
 
     # -- scanning ---------------------------------------------------------------------------------
     def _state(self, atom, where):
@@ -726,15 +1013,65 @@ class _Problem:
                                        f"(several states)")
             st = states[0]
             at = t if m.kind == "norm" else xi
-            center = sympy.ImmutableMatrix(st(at)) - vec
-            if center.shape != (st.dim, 1) or center.atoms(AppliedUndef) or center.free_symbols:
-                raise UnsupportedClaim(f"region: expected a bound on ‖{st.name} − c‖ with c constant, got "
+            index, own = None, st
+            if getattr(st, "is_frame", False):
+                which = {self.funcs[a.func][1] // 3 for a in vec.atoms(AppliedUndef)}
+                if len(which) != 1:
+                    raise UnsupportedClaim(f"region: expected a bound on one vector of the frame {st.name} minus a "
+                                           f"constant, got {m.text}")
+                index = which.pop()
+                own = st.vectors[index]
+            center = sympy.ImmutableMatrix(own(at)) - vec
+            if center.shape != (own.dim, 1) or center.atoms(AppliedUndef) or center.free_symbols:
+                raise UnsupportedClaim(f"region: expected a bound on ‖{own.name} − c‖ with c constant, got "
                                        f"{m.text}; other region shapes are not supported yet")
             window = None
             if m.kind == "sup":
                 window = _number(apply_substitution(m.window, self.sub), f"region bound on {m.text}: window")
-            out.append(_Constraint(st, m.kind, window, center, bound))
+            out.append(_Constraint(st, m.kind, window, center, bound, index))
         return out
+
+    def _frame_reference(self, group) -> sympy.ImmutableMatrix:
+        """The reference rotation R0 = [r1 r2 r3] of a frame: the centres of its region bounds, completed.
+
+        Two centres give the third (r3 = r1 × r2 and cyclically), one is completed by an exact
+        orthonormal basis of its complement, none gives the identity (the chart is then all of SO(3)).
+        """
+        centres: dict = {}
+        for c in self.constraints:
+            if c.state is not group:
+                continue
+            if c.vector in centres and any(not prove_zero(a - b) for a, b in zip(c.center, centres[c.vector])):
+                raise UnsupportedClaim(f"region: two bounds on {group.vectors[c.vector].name} with different "
+                                       f"centres; only one centre per vector is supported")
+            centres.setdefault(c.vector, sympy.ImmutableMatrix(c.center))
+        what = ", ".join(f"{group.vectors[i].name}: {list(v)}" for i, v in sorted(centres.items()))
+        for i, v in centres.items():
+            if not prove_zero(v.dot(v) - 1):
+                raise UnsupportedClaim(f"region: expected the bound on {group.vectors[i].name} of the frame about a "
+                                       f"unit vector, got the centre {list(v)}; bound s − r with a unit r")
+        r: dict = dict(centres)
+        if len(r) == 1:
+            (i, c), = r.items()
+            from ..charts import unit_vector_near
+
+            extras = unit_vector_near(c, rho_max=sympy.pi).extras
+            r[(i + 1) % 3], r[(i + 2) % 3] = sympy.ImmutableMatrix(extras["e1"]), sympy.ImmutableMatrix(extras["e2"])
+        elif len(r) == 2:
+            (i, a), (j, b) = sorted(r.items())
+            if not prove_zero(a.dot(b)):
+                raise UnsupportedClaim(f"region: expected the centres of the bounds on a frame to be orthonormal, "
+                                       f"got {what}")
+            k = 3 - i - j
+            r[k] = sympy.ImmutableMatrix(a.cross(b) if (j - i) % 3 == 1 else b.cross(a)).applyfunc(sympy.radsimp)
+        elif len(r) == 3:
+            R = sympy.Matrix.hstack(r[0], r[1], r[2])
+            if not all(prove_zero(e) for e in list(R.T * R - sympy.eye(3)) + list(r[2] - r[0].cross(r[1]))):
+                raise UnsupportedClaim(f"region: expected the centres of the bounds on a frame to be a right-handed "
+                                       f"orthonormal triad (r3 = r1 × r2), got {what}")
+        else:
+            return sympy.ImmutableMatrix(sympy.eye(3))
+        return sympy.ImmutableMatrix(sympy.Matrix.hstack(r[0], r[1], r[2]))
 
     # -- per piece count --------------------------------------------------------------------------
     def offsets(self, m: int) -> list:
@@ -749,7 +1086,16 @@ class _Problem:
             out.append(p)
         return out
 
-    def chart(self, st, applicable) -> _Chart:
+    def chart(self, st, applicable):
+        if getattr(st, "is_frame", False):
+            bounds: dict = {}
+            for c in applicable:
+                if c.vector not in bounds or _lt(c.bound, bounds[c.vector]):
+                    bounds[c.vector] = c.bound
+            key = ("frame", st.name, tuple(sorted(bounds.items())))
+            if key not in self._charts:
+                self._charts[key] = _FrameChart(st.reference, bounds)
+            return self._charts[key]
         if not applicable:
             key = ("sphere" if st.unit else "free", st.dim)
             if key not in self._charts:
@@ -801,8 +1147,8 @@ class _Model:
         count = [0, 0]
 
         def new_slot(st, where, chart):
-            z = tuple(sympy.Symbol(f"_wz{count[0] + i}", real=True) for i in range(st.dim))
-            count[0] += st.dim
+            z = tuple(sympy.Symbol(f"_wz{count[0] + i}", real=True) for i in range(chart.dim))
+            count[0] += chart.dim
             slot = _Slot(st, where, z, chart, count[1])
             count[1] += chart.nparams
             self.slots.append(slot)
@@ -817,6 +1163,9 @@ class _Model:
                 for k in range(self.npieces):
                     chart = problem.chart(st, problem.applicable(st, self.offsets[k], False))
                     self.piece_slot[(st, k)] = new_slot(st, ("piece", k), chart)
+        self.time_slot = None
+        if problem.time_range is not None:
+            self.time_slot = new_slot(None, ("time", 0), _TimeChart(*problem.time_range))
         self.nparams = count[1]
         self.params = [sympy.Symbol(f"_wp{i}", real=True) for i in range(self.nparams)]
         self.free = np.zeros(self.nparams, dtype=bool)
@@ -833,9 +1182,17 @@ class _Model:
         self.measure_z = {m_.symbol: self._measure(m_) for m_ in problem.measures}
         self.terms_z = [(label, self._convert(e, f"lhs term {label!r}")) for label, e in problem.terms]
         self.rhs_z = self._convert(problem.rhs, "rhs")
-        cs = problem.constants
         D = sympy.Add(*[e for _, e in self.terms_z]) - self.rhs_z
-        zero = {c: 0 for c in cs}
+        # a positive constant (γ > 0) that divides lhs − rhs is factored out: the sign is the quotient's
+        self.factors = []
+        for c in problem.constants:
+            if c.is_positive and D.xreplace({c: 0}) == 0 and not sympy.diff(D, c).has(c):
+                self.factors.append(c)
+                D = D.xreplace({c: 1})
+        cs = self.rest = [c for c in problem.constants if c not in self.factors]
+        #: the constants' values at which A, the terms and the sizes are taken (factors 1, the rest 0)
+        self.base = {c: 1 for c in self.factors} | {c: 0 for c in cs}
+        zero = self.base
         self.A = D.xreplace(zero)
         self.B = []
         for c in cs:
@@ -844,7 +1201,8 @@ class _Model:
                 raise InputError(f"rhs: expected lhs − rhs affine in the constants {', '.join(map(str, cs))} "
                                  f"(exists= / nonnegative=), got the derivative {_short(b)} by {c}, which still "
                                  f"depends on {', '.join(sorted(str(x) for x in b.free_symbols & set(cs)))}; "
-                                 f"write the bound affine in them")
+                                 f"write the bound affine in them (a common factor is divided out when its symbol "
+                                 f"is positive, Symbol(..., positive=True))")
             self.B.append((c, b))
         self.B_active = [(c, b) for c, b in self.B if b != 0]
         # numeric forms
@@ -852,9 +1210,6 @@ class _Model:
         zsyms = [z for slot in self.slots for z in slot.z]
         self.zsyms = zsyms
         self._f = sympy.lambdify(zsyms, outs, modules="numpy", cse=True)
-        zexprs = [e for slot in self.slots for e in slot.chart.expr(self.params[slot.start:slot.start +
-                                                                                 slot.chart.nparams])]
-        self._z = sympy.lambdify(self.params, zexprs, modules="numpy", cse=True)
         size = sympy.Add(*[sympy.Abs(e.xreplace(zero)) for _, e in self.terms_z]) + sympy.Abs(self.rhs_z.xreplace(zero))
         self._size = sympy.lambdify(zsyms, size, modules="numpy", cse=True)
         self.scale = 1.0        # typical size of the objective (set by :meth:`calibrate`)
@@ -885,6 +1240,8 @@ class _Model:
         total = []
         for k, lo, hi in self._pieces_in(I.h1, I.h2):
             F = I.inner.xreplace(self._piece_map(hist, k)).xreplace(self.point_map)
+            if self.problem.time is not None:
+                F = F.xreplace({t: self.problem.time})
             if I.degree is None:
                 val = sympy.integrate(F.xreplace({var: t - sigma}), (sigma, lo, hi))
                 if val.has(sympy.Integral):
@@ -898,12 +1255,19 @@ class _Model:
                                               for x, w in zip(nodes, weights)]))
         return sympy.Add(*total)
 
+    def _time_value(self):
+        """What t becomes: the given time, the time slot's symbol, or 0 (autonomous claims)."""
+        if self.time_slot is not None:
+            return self.time_slot.z[0]
+        return self.problem.time if self.problem.time is not None else sympy.Integer(0)
+
     def _convert(self, expr, where):
         rep = {node: self._integral_sum(self.problem.integrals[node], where) for node in outer_integrals(expr)}
         out = expr.xreplace(rep).xreplace(self.point_map).xreplace(self.measure_z)
         if out.has(t):
-            self._time_check(out, where)
-            out = out.xreplace({t: 0})
+            if self.problem.time is None and self.problem.time_range is None:
+                self._time_check(out, where)
+            out = out.xreplace({t: self._time_value()})
         return out
 
     def _time_check(self, expr, where):
@@ -917,7 +1281,8 @@ class _Model:
                 a, b = complex(f(*p, 0.0)), complex(f(*p, 0.731))
             if abs(a - b) > 1e-9 * (1 + abs(a)):
                 raise InputError(f"{where}: expected an autonomous claim (t only through t − ξ and delays), got an "
-                                 f"explicit dependence on t; time-varying claims are not supported yet")
+                                 f"explicit dependence on t (a time-varying coefficient such as h(t)); pass the "
+                                 f"witness time: time=1 (a number) or time=(lo, hi) to search it")
 
     def _measure(self, m: Measure):
         vec, window, power = self.problem.mdata[m.name]
@@ -948,9 +1313,12 @@ class _Model:
     # -- numeric ------------------------------------------------------------------------------
     def zvalues(self, P: np.ndarray) -> list:
         """The slot values for parameter columns ``P`` (shape (nparams, N))."""
-        zs = self._z(*P)
         n = P.shape[1]
-        return [np.broadcast_to(np.asarray(z, dtype=float), (n,)) for z in zs]
+        out = []
+        for slot in self.slots:
+            vals = slot.chart.numeric(P[slot.start:slot.start + slot.chart.nparams])
+            out.extend(np.broadcast_to(np.asarray(v, dtype=float), (n,)) for v in vals)
+        return out
 
     def objective(self, P: np.ndarray) -> np.ndarray:
         """``min(A, B_k…)`` (to be maximised), per column of ``P``; −inf where undefined."""
@@ -984,11 +1352,15 @@ class _Model:
     def rotation_params(self, rng) -> np.ndarray:
         """A start whose history pieces follow a rotation of the value at t."""
         p = self.random_params(rng)
-        H = float(self.problem.H) or 1.0
-        for st in self.problem.history_states:
+        H = float(self.problem.H) or max([float(c) for _, c in self.point_slot] + [1.0])
+        for st in self.problem.rotating:
             s0 = self.point_slot.get((st, 0))
-            first = s0 or self.piece_slot[(st, self.npieces - 1)]
+            first = s0 or self.piece_slot.get((st, self.npieces - 1)) or next(
+                slot for (s2, _), slot in self.point_slot.items() if s2 is st)
             ch = first.chart
+            if ch.kind == "frame":
+                self._frame_rotation(st, first, p, rng, H)
+                continue
             if ch.kind == "cap" and rng.random() < 0.4:
                 p[first.start:first.start + 2] = [0.0, rng.uniform(0, 2 * math.pi)]
             v0 = ch.value(p[first.start:first.start + ch.nparams])
@@ -1008,7 +1380,7 @@ class _Model:
             b = b - (b @ a) * a
             b = b / (np.linalg.norm(b) or 1.0)
             mode = int(rng.integers(0, 4))
-            pieces_chart = self.piece_slot[(st, 0)].chart
+            pieces_chart = (self.piece_slot.get((st, 0)) or first).chart
             top = getattr(pieces_chart, "_top", math.pi)
             amp = rng.uniform(0.3, 1.6) * (top if st.unit else math.pi) * rng.choice([-1, 1])
 
@@ -1027,16 +1399,42 @@ class _Model:
                     place(slot, float(c) / H)
         return p
 
+    def _frame_rotation(self, st, first, p, rng, H) -> None:
+        """Rotation start of a frame: the pieces are the triad at t turned about one axis by φ(σ)."""
+        ch = first.chart
+        if rng.random() < 0.4:
+            p[first.start] = 0.0                                  # the value at t: the reference triad
+        T0 = ch.value(p[first.start:first.start + ch.nparams]).reshape(3, 3).T
+        a = ch._R0[:, int(rng.integers(0, 3))] if rng.random() < 0.6 else _unit(rng, 3)
+        mode = int(rng.integers(0, 5))
+        amp = rng.uniform(0.3, 1.6) * ch._top * rng.choice([-1, 1])
+
+        def place(slot, sig):
+            # profiles of the angle along the window; the last turns t and the oldest time oppositely
+            phi = amp * (sig, math.sin(math.pi * sig), math.sin(2 * math.pi * sig), sig ** 2, sig - 0.5)[mode]
+            T = _rotation_np(a, phi) @ T0
+            p[slot.start:slot.start + slot.chart.nparams] = slot.chart.inverse(T.T.reshape(-1))
+
+        if mode == 4 and first.where == ("point", 0):
+            place(first, 0.0)
+        for k in range(self.npieces):
+            place(self.piece_slot[(st, k)], float(self.offsets[k] + self.offsets[k + 1]) / 2 / H)
+        for (s2, c), slot in self.point_slot.items():
+            if s2 is st and c != 0 and float(c) <= H:
+                place(slot, float(c) / H)
+
     # -- exact -----------------------------------------------------------------------------------
     def exact_point(self, p: np.ndarray):
-        q = [sympy.Rational(float(x)).limit_denominator(_DENOMINATOR) for x in p]
-        zexact, zballs = {}, {}
+        """``(records, zexact, zballs)`` at the exact point near ``p``: slot label → exact parameters
+        (strings), slot symbol → exact value and → its arb ball."""
+        records, zexact, zballs = {}, {}, {}
         for slot in self.slots:
-            vals = slot.chart.expr(q[slot.start:slot.start + slot.chart.nparams])
+            record, vals = slot.chart.exact(p[slot.start:slot.start + slot.chart.nparams])
+            records[slot.label] = record
             for z, v in zip(slot.z, vals):
                 zexact[z] = v
                 zballs[z] = enclose(v, prec=_PREC)
-        return q, zexact, zballs
+        return records, zexact, zballs
 
 
 # ---------------------------------------------------------------------------------------------
@@ -1127,7 +1525,7 @@ def _optimise(model: _Model, p0: np.ndarray, deadline: Deadline, best: list, max
 
 def _recheck(model: _Model, p: np.ndarray):
     """The Witness at the rational point near ``p``, or None if the violation is not proved there."""
-    q, zexact, zballs = model.exact_point(p)
+    records, zexact, zballs = model.exact_point(p)
     A = _ball(model.A, zballs)
     if not A > 0:
         return None
@@ -1137,59 +1535,74 @@ def _recheck(model: _Model, p: np.ndarray):
         if not ball >= 0:
             return None
         coefficients[str(c)] = (float_down(ball), float_up(ball))
-    return _witness(model, q, zexact, zballs, A, coefficients)
+    return _witness(model, records, zexact, zballs, A, coefficients)
 
 
 def _mid(ball) -> float:
     return float(ball.mid())
 
 
-def _witness(model: _Model, q, zexact, zballs, A, coefficients) -> Witness:
+def _witness(model: _Model, records, zexact, zballs, A, coefficients) -> Witness:
     problem = model.problem
     state, history, params, vectors, charts = {}, {}, {}, {}, {}
+    when = str(problem.time) if problem.time is not None else "0"
     for slot in model.slots:
         kind, c = slot.where
         vals = [_mid(zballs[z]) for z in slot.z]
-        if kind == "point":
+        if kind == "time":
+            when = str(zexact[slot.z[0]])
+        elif kind == "point":
             for f, v in zip(slot.state.functions, vals):
                 state[str(f(t - c))] = v
+        elif getattr(slot.state, "is_frame", False):
+            for i, v in enumerate(slot.state.vectors):
+                history.setdefault(v.name, []).append(vals[3 * i:3 * i + 3])
         else:
             history.setdefault(slot.state.name, []).append(vals)
         label = slot.label
-        params[label] = [str(x) for x in q[slot.start:slot.start + slot.chart.nparams]]
+        params[label] = records[label]
         vectors[label] = [str(zexact[z]) for z in slot.z]
         charts[label] = slot.chart.describe()
-    cs = problem.constants
-    zero = {c: 0 for c in cs}
+    cs, zero = model.rest, model.base
+    ones = {c: 1 for c in model.factors}
     terms = {}
     for label, e in model.terms_z:
         terms[label] = _mid(_ball(e.xreplace(zero), zballs))
         for c in cs:
-            d = sympy.diff(e, c)
+            d = sympy.diff(e.xreplace(ones), c)
             if d != 0:
                 terms[f"{label} [coefficient of {c}]"] = _mid(_ball(d, zballs))
     terms["rhs"] = _mid(_ball(model.rhs_z.xreplace(zero), zballs))
     for c in cs:
-        d = sympy.diff(model.rhs_z, c)
+        d = sympy.diff(model.rhs_z.xreplace(ones), c)
         if d != 0:
             terms[f"rhs [coefficient of {c}]"] = _mid(_ball(d, zballs))
     measures = {m.name: _mid(_ball(model.measure_z[m.symbol], zballs)) for m in problem.measures}
+    texts = {}
+    for st in problem.states:
+        texts[st.name] = st.text
+        for v in getattr(st, "vectors", ()):
+            texts[v.name] = v.text
+    lo, hi = problem.time_range or (None, None)
     exact = {
-        "t": "0",
+        "t": when,
+        "time": ("given" if problem.time is not None else f"searched in [{lo}, {hi}]" if lo is not None
+                 else "autonomous"),
+        "factors": [str(c) for c in model.factors],
         "pieces": model.npieces,
         "window": str(problem.H) if model.npieces else "",
         "breakpoints": [f"t - {o}" if o != 0 else "t" for o in model.offsets] if model.npieces else [],
         "parameters": params,
         "vectors": vectors,
         "charts": charts,
-        "texts": {st.name: st.text for st in problem.states},
-        "constants": [str(c) for c in cs],
+        "texts": texts,
+        "constants": [str(c) for c in problem.constants],
     }
     return Witness((float_down(A), float_up(A)), state, history, measures, terms, exact, coefficients)
 
 
 def search_witness(lhs, rhs, *, system, values, measures, region=None, exists=(), nonnegative=(),
-                   pieces=(1, 2, 3, 5), starts=24, budget=None, seed=0) -> Witness | None:
+                   pieces=(1, 2, 3, 5), starts=24, budget=None, seed=0, time=None) -> Witness | None:
     """Search for a state and a history that refute ``lhs ≤ rhs``; return a rechecked :class:`Witness` or None.
 
     Parameters
@@ -1222,6 +1635,12 @@ def search_witness(lhs, rhs, *, system, values, measures, region=None, exists=()
         out the best candidates so far are rechecked.  Building the exact expression of a
         piece count is not interrupted.
     seed : int, default 0
+    time : number, pair (lo, hi) or None
+        The witness time for a claim with an explicit t (time-varying coefficients h(t),
+        ḣ(t) after ``values``): t is set to it before the window integrals are summed (the
+        windows are [time − h, time]).  A pair searches the time in [lo, hi] as well; the
+        exact recheck is at a rational time there.  None (default): the claim must be
+        autonomous, and t = 0.  A float is taken at its exact binary value.
 
     Returns
     -------
@@ -1232,7 +1651,7 @@ def search_witness(lhs, rhs, *, system, values, measures, region=None, exists=()
     ------
     InputError
         Malformed arguments; symbols without a value; ``lhs − rhs`` not affine in the
-        constants; an explicit (time-varying) t.
+        constants; an explicit (time-varying) t without ``time=``.
     UnsupportedClaim
         A claim outside the witness family (see the module notes); it is an
         :class:`~lkverify.errors.UnsupportedInput` and an InputError.
@@ -1249,7 +1668,7 @@ def search_witness(lhs, rhs, *, system, values, measures, region=None, exists=()
     >>> w.violation[0] > 0
     True
     """
-    problem = _Problem(lhs, rhs, system, values, measures, region, exists, nonnegative)
+    problem = _Problem(lhs, rhs, system, values, measures, region, exists, nonnegative, time)
     if isinstance(pieces, numbers.Integral):
         pieces = (pieces,)
     pieces = tuple(pieces)
@@ -1272,7 +1691,7 @@ def search_witness(lhs, rhs, *, system, values, measures, region=None, exists=()
         for k in range(starts):
             if deadline.expired:
                 break
-            rotation = k % 2 == 1 and bool(problem.history_states)
+            rotation = k % 2 == 1 and bool(problem.rotating)
             p0 = model.rotation_params(rng) if rotation else model.random_params(rng)
             best = [-np.inf, p0]
             _optimise(model, p0, deadline, best)
