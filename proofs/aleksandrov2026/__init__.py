@@ -26,6 +26,7 @@ r1 = (1/√2, 1/√2, 0), r2 = (−1/√2, 1/√2, 0), r3 = (0, 0, 1), α1 = α2
 ν = 0.3, D = 2I, τ = 1.
 
 Modules: :mod:`.equations` (parameters, states, (2), (7), (13)), :mod:`.theorem1`,
+:mod:`.theorem1_bound` (the printed V̇ bound with c5…c10 on the exact V̇, proved),
 :mod:`.theorem2`, :mod:`.theorem2_bound` (the printed γβc7 step, refuted for β < 0, and its
 corrected form), :mod:`.example` (section 5).
 """
@@ -33,6 +34,7 @@ corrected form), :mod:`.example` (section 5).
 from .equations import (PAPER, D, D_inv, L, P, Theta, W, alpha1, alpha2, beta, f, g, gamma, lam, mu, nu, omega, r1, r2, r3,
                         s1, s2, s3, system, system_pid, tau)
 from .theorem1 import functional, int_fL, printed_Vdot, theorem1
+from .theorem1_bound import theorem1_bound
 from .theorem2 import Xi, theorem2
 from .theorem2_bound import theorem2_bound
 from .example import HISTORY, example
@@ -43,7 +45,7 @@ __all__ = [
     "P", "Theta", "D", "D_inv", "alpha1", "alpha2", "nu", "tau", "r1", "r2", "r3", "gamma", "lam", "mu", "beta", "g",
     "omega", "s1", "s2", "s3", "L", "f", "W", "system", "system_pid",
     # Theorem 1
-    "functional", "int_fL", "printed_Vdot", "theorem1",
+    "functional", "int_fL", "printed_Vdot", "theorem1", "theorem1_bound",
     # Theorem 2
     "Xi", "theorem2", "theorem2_bound",
     # section 5

@@ -81,3 +81,28 @@ def test_theorem3_caps_are_exact_and_below_the_print():
     # a body with equal moments: θ* = θ_max = 5, d1 ≥ 10 (still above 9.21)
     v2 = P002.resolve({"Theta": "diag(5,5,5)"}, use_defaults=True)
     assert caps(v2)[2] == 10
+
+
+def test_paper000_theorem1_c5_to_c10_bound_is_proved_on_the_exact_vdot():
+    import dataclasses
+
+    import sympy
+
+    from lkverify.proofs.aleksandrov2026.theorem1_bound import BOUNDS, d1, d2, derivation, mu, printed_bound
+
+    v = P000.resolve({}, use_defaults=True)
+    assert derivation.check(P000.substitution(v), values=v, budget=120).status is Status.EXACT
+    res = printed_bound.check(v, search=False)
+    assert res.status is Status.CERTIFIED, res.detail
+    assert set(res.constants) == {"c8", "c10p"}
+    assert all(1.0 <= res.constants[c] <= 1.01 for c in ("c8", "c10p"))
+    # a wrong constant in an exact term is refuted with a witness (frames, delayed values)
+    i = next(k for k, tb in enumerate(BOUNDS) if tb.terms == ("−μW(t−τ)",))
+    wrong = -2 * mu * (d1 ** sympy.Rational(13, 5) + d2 ** sympy.Rational(13, 5))  # W(t−τ) with ν = 3/10, twice
+    from lkverify.certify.steps.rules import Equal
+
+    tb = dataclasses.replace(BOUNDS[i], bound=wrong, rule=Equal(wrong))
+    step = dataclasses.replace(printed_bound, bounds=(tb,), rhs=wrong, part=tb.terms)
+    bad = step.check(v)
+    assert bad.status is Status.FAILED, bad.detail
+    assert bad.terms[0].witness.violation[0] > 0

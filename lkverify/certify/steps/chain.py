@@ -310,6 +310,7 @@ class TermwiseBound:
     def _check_term(self, tb: TermBound, expr, statement, ctx: Context, constants: dict, search: bool) -> TermResult:
         direction = self.direction
         apps: list[Application] = []
+        ctx.certified = {}
         try:
             app = tb.rule.apply(expr, direction, ctx)
         except InputError as exc:
@@ -323,6 +324,9 @@ class TermwiseBound:
             nxt = rewrite.rewrite(bound, ctx) if hasattr(rewrite, "rewrite") else rewrite.apply(bound, direction, ctx)
             apps.append(nxt)
             bound = nxt.bound
+        if ctx.certified:  # constants certified inside the rule's norm trees
+            apps[0] = dataclasses.replace(apps[0], constants=tuple(apps[0].constants) + tuple(
+                (name, value, info) for name, (value, info) in ctx.certified.items()))
         for a in apps:
             for name, value, _ in a.constants:
                 constants[name] = value

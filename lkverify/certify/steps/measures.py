@@ -81,23 +81,40 @@ class Measure:
             raise InputError(f"measure {self.name}: power: expected a positive number, got {self.power!r}")
         object.__setattr__(self, "power", p)
         object.__setattr__(self, "window", sympy.sympify(self.window))
-        at = t if self.kind == "norm" else xi
-        wrong = {a for a in vec.atoms(sympy.core.function.AppliedUndef) if a.args[0] != at}
-        if wrong:
-            raise InputError(f"measure {self.name}: the vector must be written at {at} for kind {self.kind!r}, "
-                             f"got {sorted(map(str, wrong))[0]}")
+        times = {a.args[0] for a in vec.atoms(sympy.core.function.AppliedUndef)}
+        if self.kind == "norm":
+            # at t, or at one delayed time t − c (c ≥ 0 a constant): ‖s(t − τ) − r‖
+            bad = [x for x in times if (t - x).has(t) or (t - x).is_negative]
+            if bad or len(times) > 1:
+                raise InputError(f"measure {self.name}: a norm measure is written at t or at one delayed time t − c, "
+                                 f"got {', '.join(sorted(map(str, times)))}")
+        elif times - {xi}:
+            raise InputError(f"measure {self.name}: the vector must be written at xi for kind {self.kind!r}, "
+                             f"got {sorted(map(str, times - {xi}))[0]}")
         if not self.text:
             object.__setattr__(self, "text", self.name)
+
+    @property
+    def time(self):
+        """The time a norm measure is taken at (t or t − c); ξ for the window kinds."""
+        if self.kind != "norm":
+            return xi
+        times = {a.args[0] for a in self.vector.atoms(sympy.core.function.AppliedUndef)}
+        return next(iter(times)) if times else t
 
     @property
     def symbol(self) -> sympy.Symbol:
         """The nonnegative symbol that stands for the measure in bounds."""
         return sympy.Symbol(self.name, nonnegative=True)
 
+    @property
+    def pointwise_symbol(self) -> sympy.Symbol:
+        """A nonnegative symbol for the pointwise norm ‖v(ξ)‖ inside window integrals (see :meth:`pointwise`)."""
+        return sympy.Symbol(f"{self.name}_xi", nonnegative=True)
+
     def pointwise(self, at=xi) -> sympy.Expr:
         """‖vector‖ at time ``at`` (the integrand's norm for the window kinds)."""
-        v = self.vector if at == (t if self.kind == "norm" else xi) else self.vector.subs(
-            t if self.kind == "norm" else xi, at)
+        v = self.vector if at == self.time else self.vector.subs(self.time, at)
         return sympy.sqrt(norm_squared(v))
 
     @property
@@ -177,8 +194,12 @@ class Region:
                 continue
             b = sympy.sympify(b).xreplace(sub)
             h = sympy.sympify(m.window).xreplace(sub)
-            if measure.kind == "norm" and measure.vector == m.vector.subs(xi, t):
-                return b
+            if measure.kind == "norm":
+                lag = sympy.simplify(t - measure.time)
+                if measure.vector == m.vector.subs(xi, measure.time) and lag.is_nonnegative \
+                        and sympy.simplify(h - lag).is_nonnegative:
+                    return b
+                continue
             if measure.kind in ("window_norm", "window_integral") and measure.vector == m.vector:
                 hm = sympy.sympify(measure.window).xreplace(sub)
                 if sympy.simplify(hm - h).is_positive:

@@ -82,6 +82,11 @@ class Context:
 
     def __post_init__(self):
         self.sub = self.system.parameters.substitution(self.values)
+        self.certified = {}  # constants certified inside norm trees: name → (value, info)
+
+    def __getitem__(self, name):
+        """The resolved value of a parameter (so a callable of the values also works with the context)."""
+        return self.values[name]
 
     def at(self, expr):
         """``expr`` with the parameter values (and the step's named constants) substituted.
@@ -108,9 +113,14 @@ class Context:
             raise InputError(f"unknown measure {name!r}: expected one of {', '.join(self.measures)}; declare it "
                              f"with the step's measures") from None
 
+    def pointwise(self, expr):
+        """``expr`` with the pointwise-norm symbols of the window measures replaced by their definitions."""
+        rep = {m.pointwise_symbol: self.at(m.pointwise()) for m in self.measures.values() if m.kind != "norm"}
+        return sympy.sympify(expr).xreplace(rep)
+
     def zero(self, expr) -> bool:
         """Is ``expr`` exactly 0 on the state manifold (unit vectors, frames)?"""
-        e = sympy.expand(self.at(expr))
+        e = sympy.expand(self.pointwise(self.at(expr)))
         if e == 0:
             return True
         from ...symbolic.canonical import Canonicalizer
@@ -293,7 +303,7 @@ def measured(measure: Measure, *, at=None) -> Norm:
     if measure.kind == "sup":
         raise InputError(f"measured({measure.name}): a sup measure bounds norms pointwise; use it in a region")
     vec = measure.vector if measure.kind != "norm" else measure.vector.subs(t, xi)
-    return Norm(f"‖v(ξ)‖ of {measure.name}", vec, measure.pointwise())
+    return Norm(f"‖v(ξ)‖ of {measure.name}", vec, measure.pointwise_symbol)
 
 
 def unit(vector) -> Norm:
@@ -304,7 +314,8 @@ def unit(vector) -> Norm:
 def crossed(a: Norm, b: Norm) -> Norm:
     """‖a × b‖ ≤ ‖a‖‖b‖."""
     va, vb = sympy.Matrix(a.vector), sympy.Matrix(b.vector)
-    return Norm("‖a×b‖ ≤ ‖a‖‖b‖", sympy.ImmutableMatrix(va.cross(vb)), a.bound * b.bound, (a, b))
+    bound = None if a.bound is None or b.bound is None else a.bound * b.bound
+    return Norm("‖a×b‖ ≤ ‖a‖‖b‖", sympy.ImmutableMatrix(va.cross(vb)), bound, (a, b))
 
 
 def scaled(factor, inner: Norm) -> Norm:
@@ -312,8 +323,8 @@ def scaled(factor, inner: Norm) -> Norm:
     c = sympy.sympify(factor)
     cond = _cond(f"the factor {c} is ≥ 0", nonnegative(c) or None if not c.is_number else bool(c >= 0),
                  "" if nonnegative(c) else "not shown nonnegative")
-    return Norm(f"|c|·‖v‖ (c = {c})", sympy.ImmutableMatrix(sympy.Matrix(inner.vector) * c), c * inner.bound,
-                (inner,), (cond,))
+    return Norm(f"|c|·‖v‖ (c = {c})", sympy.ImmutableMatrix(sympy.Matrix(inner.vector) * c),
+                None if inner.bound is None else c * inner.bound, (inner,), (cond,), data=(c,))
 
 
 def summed(*parts: Norm) -> Norm:
@@ -331,14 +342,23 @@ def mapped(matrix, inner: Norm, operator_norm) -> Norm:
                 (inner,), data=(sympy.ImmutableMatrix(matrix), operator_norm))
 
 
-def integral_of(pointwise: Norm, *, measure: Measure, power, weight=1, window=None, holder=None) -> Norm:
+def integral_of(pointwise: Norm, *, measure=None, power, weight=1, window=None, holder=None, measures=(),
+                constant: str | None = None) -> Norm:
     """‖∫_{t−h}^t g(ξ) v(ξ) dξ‖ ≤ ∫ |g|‖v(ξ)‖ ≤ (weight bound or Hölder)·(measure).
 
     ``pointwise`` bounds ‖v(ξ)‖ by the measure's pointwise norm to ``power`` k.  With
     ``holder=None`` the measure must be ``window_integral`` of order k (or
     ``window_norm`` of order k) and the bound is max|g|·measure; with ``holder=(p, q)``
     (1/p + 1/q = 1, k·p = the measure's order) it is (∫|g|^q)^{1/q}·measure^k.
+
+    With ``measures=(M1, M2, …)`` (window integrals of order k of several vectors) the
+    pointwise bound B(ξ) in their pointwise norms P_i(ξ) is compared with Σ P_i^k: equal, or
+    (``constant`` named) homogeneous of degree k with κ = sup B/Σ P_i^k certified
+    (:class:`Homogeneous`); the bound is then max g·κ·Σ M_i.
     """
+    if measures:
+        return Norm("window integral of a sum", ("integrals", pointwise, tuple(measures), sympy.sympify(power),
+                                                 sympy.sympify(weight), constant), None, (pointwise,))
     return Norm("window integral", ("integral", pointwise, measure, sympy.sympify(power), sympy.sympify(weight),
                                     window, holder), None, (pointwise,))
 
@@ -418,6 +438,9 @@ def _resolve_norm(nb: Norm, vector, ctx: Context) -> tuple:
     """(bound, conditions) proving ‖vector‖ ≤ bound by the tree ``nb`` (vector matched exactly)."""
     conds = []
     vec = sympy.Matrix(ctx.at(sympy.Matrix(vector)))
+    if isinstance(nb.vector, tuple) and nb.vector[0] == "integrals":
+        _, pointwise, measures, k, weight, constant = nb.vector
+        return _resolve_integrals(vec, pointwise, measures, ctx.at(k), weight, constant, ctx, vector)
     if isinstance(nb.vector, tuple) and nb.vector[0] == "integral":
         _, pointwise, measure, k, weight, _window, holder = nb.vector
         k = ctx.at(k)
@@ -437,7 +460,8 @@ def _resolve_norm(nb: Norm, vector, ctx: Context) -> tuple:
         if pb is None:
             return None, conds
         P = measure.pointwise()
-        conds.append(_cond(f"‖v(ξ)‖ ≤ ‖{measure.name}(ξ)‖^{k}", ctx.zero(pb - P ** k), f"the pointwise bound is {pb}"))
+        conds.append(_cond(f"‖v(ξ)‖ ≤ ‖{measure.name}(ξ)‖^{k}", ctx.zero(ctx.pointwise(pb) - P ** k),
+                           f"the pointwise bound is {pb}"))
         fac, wconds = _window_factor(g, lo.subs(var, xi) if lo.has(var) else lo, hi, measure, k, holder, ctx)
         conds += wconds
         if fac is None:
@@ -490,9 +514,53 @@ def _resolve_norm(nb: Norm, vector, ctx: Context) -> tuple:
         conds += ci + list(nb.conditions)
         if bi is None:
             return None, conds
-        c = sympy.simplify(nb.bound / inner.bound) if inner.bound != 0 else sympy.S.Zero
-        return ctx.at(c) * bi, conds
+        return ctx.at(nb.data[0]) * bi, conds
     return nb.bound, conds
+
+
+def _resolve_integrals(vec, pointwise, measures, k, weight, constant, ctx: Context, vector):
+    """‖∫ g v‖ ≤ max g · κ · Σ M_i for window-integral measures M_i of order k (see :func:`integral_of`)."""
+    conds = []
+    ints = list(vec)
+    if not all(isinstance(c, sympy.Integral) and len(c.limits) == 1 for c in ints):
+        return None, [_cond("the vector is a window integral ∫ g(ξ)v(ξ)dξ", False, f"got {vector}")]
+    var, lo, hi = ints[0].limits[0]
+    if any(c.limits[0] != (var, lo, hi) for c in ints):
+        return None, [_cond("the components integrate over one window", False)]
+    inner = sympy.Matrix([c.function for c in ints]).subs(var, xi)
+    g = ctx.at(weight)
+    pv = sympy.Matrix(ctx.at(sympy.Matrix(pointwise.vector)))
+    conds.append(_cond(f"the integrand is g(ξ)·v(ξ) with g = {g}", all(ctx.zero(x) for x in inner - g * pv), "it is not"))
+    pb, pconds = _resolve_norm(pointwise, pv, ctx)
+    conds += pconds
+    if pb is None:
+        return None, conds
+    ps = [sympy.Symbol(f"p_{m.name}", nonnegative=True) for m in measures]
+    for m in measures:
+        conds.append(_cond(f"{m.name} is a window integral of order {k}", m.kind == "window_integral"
+                           and sympy.simplify(ctx.at(m.power) - k) == 0, f"{m.kind} of order {m.power}"))
+    B = sympy.sympify(ctx.at(pb)).xreplace({m.pointwise_symbol: p for m, p in zip(measures, ps)})
+    if B.atoms(AppliedUndef):
+        return None, conds + [_cond("the pointwise bound is written in the measures' pointwise norms", False,
+                                    f"got {pb}")]
+    T = sum((p**k for p in ps), sympy.S.Zero)
+    if ctx.zero(B - T):
+        kappa = sympy.S.One
+    elif constant is None:
+        return None, conds + [_cond(f"the pointwise bound is Σ‖v_i(ξ)‖^{k}", False, f"got {B}; name a constant= to "
+                                    f"certify a homogeneous bound")]
+    else:
+        kappa, hconds, info = _homogeneous_sup(B, T, ps)
+        conds += hconds
+        if kappa is None:
+            return None, conds
+        ctx.certified[constant] = (info["certified"], info)
+    fac, wconds = _window_factor(g, lo, hi, measures[0], k, None, ctx)
+    conds += [c for c in wconds if "the integrand's power" not in c.text]
+    if fac is None:
+        return None, conds
+    gmax, _ = fac
+    return gmax * kappa * sum((m.symbol for m in measures), sympy.S.Zero), conds
 
 
 def _is_unit(vec, ctx: Context) -> bool:
@@ -716,6 +784,42 @@ class Young(Rule):
         return self.rewrite(ctx.at(term), ctx)
 
 
+def _homogeneous_sup(g, T, xs):
+    """(κ or None, conditions, info): κ ≥ sup g/T over x ≥ 0, x ≠ 0 for g, T homogeneous of one degree.
+
+    Homogeneity is checked exactly (g(ρx)/T(ρx) = g(x)/T(x)); the supremum is then the one on
+    the faces max_k x_k = 1 of the unit cube, certified there with arb.
+    """
+    from ..bounds import sup_bound
+    from ...options import Budget
+
+    conds = []
+    rho = sympy.Symbol("rho_h", positive=True)
+    pos = {x: sympy.Symbol(x.name, positive=True) for x in xs}
+    ratio = (sympy.sympify(g) / T).xreplace(pos)
+    scaled_ratio = ratio.xreplace({pos[x]: rho * pos[x] for x in xs})
+    free = sympy.simplify(sympy.powsimp(sympy.expand_power_base(scaled_ratio / ratio, force=True), force=True))
+    conds.append(_cond(f"g and T = {T} are homogeneous of one degree", free == 1, f"g(ρx)/T(ρx) ÷ g/T = {free}"))
+    if not conds[-1].status.is_proof:
+        return None, conds, {}
+    best = None
+    for x in xs:
+        others = {pos[y]: sympy.Symbol(f"{y.name}_f", nonnegative=True) for y in xs if y != x}
+        on_face = ratio.xreplace({pos[x]: sympy.S.One, **others})
+        box = {v: (0, 1) for v in others.values()}
+        r = sup_bound(on_face, box, accuracy=TEMPLATE_ACCURACY, budget=Budget(seconds=30.0, boxes=TEMPLATE_BOXES),
+                      enclosure=TEMPLATE_ENCLOSURE)
+        if r.certified is None or not r.certified < float("inf"):
+            conds.append(_cond("κ certified", None, "no finite certified bound on a face", certified=True))
+            return None, conds, {}
+        if best is None or r.certified > best.certified:
+            best = r
+    conds.append(_cond(f"κ = sup g/T = {best.certified:.6g} certified on the faces max x_k = 1 (estimate "
+                       f"{best.estimate:.6g})", True, certified=True))
+    info = {"estimate": best.estimate, "certified": best.certified, "gap": best.gap, "boxes": best.boxes}
+    return sympy.Rational(best.certified), conds, info
+
+
 @dataclasses.dataclass(frozen=True)
 class Homogeneous(Rule):
     """factor·g(x) ≤ factor·κ·T(x) for g, T homogeneous of one degree in the measures x, T > 0 off 0.
@@ -745,39 +849,12 @@ class Homogeneous(Rule):
                        f"g = {g} involves other measures")]
         if not conds[0].status.is_proof:
             return Application(self.name, None, tuple(conds))
-        rho = sympy.Symbol("rho_h", positive=True)
-        pos = {x: sympy.Symbol(x.name, positive=True) for x in xs}
-        ratio = (g / T).xreplace(pos)
-        scaled_ratio = ratio.xreplace({pos[x]: rho * pos[x] for x in xs})
-        free = sympy.simplify(sympy.powsimp(sympy.expand_power_base(scaled_ratio / ratio, force=True), force=True))
-        conds.append(_cond(f"g and T = {T} are homogeneous of one degree", free == 1, f"g(ρx)/T(ρx) ÷ g/T = {free}"))
-        if not conds[-1].status.is_proof:
+        kappa, hconds, info = _homogeneous_sup(g, T, xs)
+        conds += hconds
+        if kappa is None:
             return Application(self.name, None, tuple(conds))
-        # by homogeneity the supremum over x ≠ 0, x ≥ 0 is the one over the faces max_k x_k = 1 of the unit cube
-        res, best = None, None
-        for k, x in enumerate(xs):
-            others = {pos[y]: sympy.Symbol(f"{y.name}_f", nonnegative=True) for y in xs if y != x}
-            on_face = ratio.xreplace({pos[x]: sympy.S.One, **others})
-            box = {v: (0, 1) for v in others.values()}
-            r = sup_bound(on_face, box, accuracy=TEMPLATE_ACCURACY,
-                          budget=Budget(seconds=30.0, boxes=TEMPLATE_BOXES), enclosure=TEMPLATE_ENCLOSURE)
-            if r.certified is None or not r.certified < float("inf"):
-                res = r
-                best = None
-                break
-            if best is None or r.certified > best.certified:
-                best = r
-        res = best if best is not None else res
-        proved = best is not None
-        conds.append(_cond(f"κ = sup g/T = {res.certified:.6g} certified on the faces max x_k = 1 (estimate "
-                           f"{res.estimate:.6g})" if proved else "κ certified", proved or None,
-                           "no finite certified bound", certified=True))
-        if not proved:
-            return Application(self.name, None, tuple(conds))
-        kappa = sympy.Rational(res.certified)
-        info = {"estimate": res.estimate, "certified": res.certified, "gap": res.gap, "boxes": res.boxes}
         return Application(self.name, sympy.expand(factor * kappa * T), tuple(conds),
-                           ((self.constant, res.certified, info),))
+                           ((self.constant, info["certified"], info),))
 
     def apply(self, term, direction, ctx):
         return self.rewrite(ctx.at(term), ctx)
