@@ -223,6 +223,9 @@ class Theorem(Item):
 
     def _verdict(self, results, definite=None, upper=None, steps=None, decay=None) -> str:
         text = theorem_verdict(self.chain(results, definite=definite, upper=upper, steps=steps, decay=decay))
+        if decay is not None and text.startswith("established") and decay.status is not None \
+                and decay.status.is_proof:
+            text += f"; on the certified region: {decay.detail}"
         if self.unchecked and not text.startswith("established"):
             text += "; the proof module lists as not yet checked: " + "; ".join(self.unchecked)
         return text

@@ -65,7 +65,7 @@ class ConstantsTuning:
         When a template constant's certified bound is tight enough.
     template_boxes : int, default 40 000
         Branch-and-bound boxes per template constant.
-    template_enclosure : str, default "mean-value"
+    template_enclosure : str, default "taylor"
         The enclosure strategy of :func:`lkverify.certify.bounds.sup_bound`.
     rounds : int, default 5
         Search-then-certify rounds; a refuted point joins the samples of the next search.
@@ -98,7 +98,7 @@ class ConstantsTuning:
     template_share: float = 0.5
     template_accuracy: Accuracy = Accuracy(rel_gap=5e-3)
     template_boxes: int = 40_000
-    template_enclosure: str = "mean-value"
+    template_enclosure: str = "taylor"
     rounds: int = 5
     attempts: int = 6
     parameter_denominator: int = 10**4

@@ -262,8 +262,13 @@ def sup_bound(expr, box: Mapping, *, budget: Budget | None = None, accuracy: Acc
         The strategy that bounds a box (:data:`lkverify.certify.engine.ENCLOSURES`):
         ``"mean-value"`` (cheap; also gives the monotonicity test and the split
         direction), ``"affine"`` (tighter on wide boxes of trigonometric
-        expressions, about 2× costlier), ``"both"`` intersected, ``"natural"``.
-        Any choice is sound; it only changes speed.
+        expressions, about 2× costlier), ``"both"`` intersected, ``"natural"``,
+        ``"taylor"`` (mean-value ∩ second- and third-order Taylor forms,
+        :class:`~lkverify.certify.engine.Taylor`: compiles the derivatives up to
+        third order once, costs about 4× per box, and needs far fewer boxes where
+        the supremum is attained inside the box or along flat directions -- a
+        quadratic form on a sphere, say).  Any choice is sound; it only changes
+        speed.
     progress : callable, optional
         Called with a :class:`~lkverify.certify.engine.BranchProgress` about twice a second.
 

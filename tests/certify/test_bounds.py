@@ -198,7 +198,7 @@ def test_sup_of_x_exp_minus_x_is_one_over_e():
     assert json.loads(json.dumps(res.to_json()))["estimate"]["status"] == "estimated"
 
 
-@pytest.mark.parametrize("enclosure", ["both", "mean-value", "affine"])
+@pytest.mark.parametrize("enclosure", ["both", "mean-value", "affine", "taylor"])
 def test_certified_sup_dominates_a_dense_grid(enclosure):
     expr = sympy.sin(3 * x) * sympy.cos(2 * y) * sympy.exp(-(x ** 2 + y ** 2) / 4) + x * y / 5
     res = sup_bound(expr, {x: (-2, 2), y: (-1, 2)}, enclosure=enclosure)
@@ -236,7 +236,7 @@ def test_region_with_irrational_bounds_keeps_points_inside():
 
 def test_options_are_validated():
     with pytest.raises(InputError, match="enclosure"):
-        sup_bound(x, {x: (0, 1)}, enclosure="taylor")
+        sup_bound(x, {x: (0, 1)}, enclosure="interval-newton")
     with pytest.raises(InputError, match="progress"):
         sup_bound(x, {x: (0, 1)}, progress=3)
     with pytest.raises(InputError, match="rel_gap"):
@@ -458,6 +458,223 @@ def test_cap_chart_sup_matches_closed_form():
     assert res.status is Status.CERTIFIED
     assert res.certified >= true and res.lower <= true + 1e-12
     assert res.certified <= 1.01 * true
+
+
+# ---------------------------------------------------------------------------
+# the Taylor strategy (lkverify.certify.engine.Taylor) and its quadratic bound
+# ---------------------------------------------------------------------------
+
+def _exact_cube_max(b, S):
+    """max of b·e + eᵀSe over [-1, 1]^m, exactly (Fractions): every face's stationary point, the slow path."""
+    from fractions import Fraction
+    import itertools
+    m = len(b)
+    best = None
+    for pattern in itertools.product((None, 1, -1), repeat=m):
+        free = [i for i in range(m) if pattern[i] is None]
+        e = [Fraction(0) if p is None else Fraction(p) for p in pattern]
+        if free:                       # 2 S_FF e_F = −(b_F + 2 S_F,fixed e_fixed), by Gauss–Jordan
+            A = [[2 * S[i][j] for j in free] + [-(b[i] + 2 * sum(S[i][j] * e[j] for j in range(m)
+                                                                  if pattern[j] is not None))] for i in free]
+            k = len(free)
+            singular = False
+            for c in range(k):
+                piv = next((r for r in range(c, k) if A[r][c] != 0), None)
+                if piv is None:
+                    singular = True    # a flat face: its maximum is also attained on a smaller face
+                    break
+                A[c], A[piv] = A[piv], A[c]
+                for r in range(k):
+                    if r != c and A[r][c] != 0:
+                        f = A[r][c] / A[c][c]
+                        A[r] = [u - f * v for u, v in zip(A[r], A[c])]
+            if singular:
+                continue
+            sol = [A[r][k] / A[r][r] for r in range(k)]
+            if any(abs(v) > 1 for v in sol):
+                continue
+            for i, v in zip(free, sol):
+                e[i] = v
+        val = sum(b[i] * e[i] for i in range(m)) + sum(S[i][j] * e[i] * e[j] for i in range(m) for j in range(m))
+        best = val if best is None or val > best else best
+    return best
+
+
+def test_cube_quadratic_sup_dominates_the_exact_maximum():
+    """The proved bound of a quadratic on the cube against its exact maximum; tight for concave ones."""
+    from fractions import Fraction
+    from lkverify.certify.engine import cube_quadratic_sup
+    from lkverify.certify.intervals import upper_fraction
+    rng = np.random.default_rng(3)
+    for trial in range(120):
+        m = int(rng.integers(1, 4))
+        b = [Fraction(int(v), 16) for v in rng.integers(-40, 41, m)]
+        M = rng.integers(-30, 31, (m, m))
+        shift = [0, 0, 40 * m, 8 * m][trial % 4]          # indefinite, …, concave, mildly indefinite
+        S = [[Fraction(int(M[i, j] + M[j, i]), 32) - (Fraction(shift, 32) if i == j else 0) for j in range(m)]
+             for i in range(m)]
+        exact = _exact_cube_max(b, S)
+        ball = lambda q, rad=0.0: arb(float(q), rad) if rad else arb(q.numerator) / q.denominator
+        bound = cube_quadratic_sup([ball(v) for v in b], [[ball(v) for v in row] for row in S])
+        assert upper_fraction(bound) >= exact, (b, S)
+        if trial % 4 == 2:                                 # strictly concave: the dual bound is exact
+            assert float(upper_fraction(bound) - exact) <= 1e-7 * (1 + abs(float(exact)))
+        # with radii, every quadratic inside the balls is dominated
+        rad = 0.05
+        wide = cube_quadratic_sup([arb(float(v), rad) for v in b], [[arb(float(v), rad) for v in row] for row in S])
+        for _ in range(3):
+            bp = [v + Fraction(int(rng.integers(-9, 10)), 200) for v in b]
+            d = [[Fraction(int(rng.integers(-9, 10)), 200) for _ in range(m)] for _ in range(m)]
+            Sp = [[S[i][j] + d[min(i, j)][max(i, j)] for j in range(m)] for i in range(m)]
+            assert upper_fraction(wide) >= _exact_cube_max(bp, Sp)
+
+
+TAYLOR_EXPRS = [
+    sympy.sin(3 * x) * sympy.cos(2 * y) + x * y ** 2,
+    sympy.exp(-x ** 2 - y ** 2) * (x - y) + sympy.atan(x * y),
+    (x ** 2 + y ** 2 + R(1, 10)) ** R(13, 10) - x * y + sympy.sqrt(2 + x),
+    x ** 3 - 3 * x * y ** 2 + y ** 4 / 5 + sympy.log(3 + x * y),
+    sympy.tanh(x + y) * sympy.cosh(x - y) / (2 + x ** 2),
+    sympy.sin(x) * sympy.sin(y) * sympy.sin(z) + (x - z) ** 2 * y,
+    -((x - R(1, 3)) ** 2 + 2 * (y - R(1, 5)) ** 2 - (x - R(1, 3)) * (y - R(1, 5))) * (1 + z ** 2) + z ** 3,
+]
+
+
+def test_taylor_programs_enclose_sympys_derivatives():
+    """The compiled derivatives (after common-subexpression elimination) against mpmath values of
+    SymPy's diff, at points (balls must contain the value) and on boxes (values at points inside)."""
+    from lkverify.certify.engine import Objective
+    from lkverify.certify.regions import parse_region
+    mpmath.mp.dps = 40
+    expr = (sympy.asin(x / 2) * sympy.acos(y / 3) + sympy.sinh(x * y) - sympy.tan(x / 3) + sympy.sinc(x + y)
+            + 2 ** (x * y) + x ** y + sympy.atan(x) / (3 + y) + sympy.exp(x) ** R(1, 3) + sympy.sqrt(1 + x * y))
+    region = parse_region({x: (R(1, 10), 1), y: (R(1, 5), 1)}, [expr])
+    tp = Objective(expr, region).taylor_programs(3)
+    assert tp is not None and tp.order == 3
+    vs = [x, y]
+    grads = [sympy.diff(expr, v) for v in vs]
+    pairs = [(0, 0), (0, 1), (1, 1)]
+    hess = [sympy.diff(grads[i], vs[j]) for i, j in pairs]
+    third = [sympy.diff(hess[m], vs[k]) for m, (i, j) in enumerate(pairs) for k in range(j, 2)]
+    ref = sympy.lambdify(vs, [expr, *grads, *hess, *third], modules="mpmath")
+    rng = np.random.default_rng(5)
+    for _ in range(15):
+        p = [float(v) for v in rng.uniform(0.1, 1, 2)]
+        want = [float(v) for v in ref(*[mpmath.mpf(v) for v in p])]
+        for balls in (tp.box(*[arb(v) for v in p]), tp.point(*[arb(v) for v in p])):
+            for ball, v in zip(balls, want):
+                assert float(ball.lower()) - 1e-12 * (1 + abs(v)) <= v <= float(ball.upper()) + 1e-12 * (1 + abs(v))
+        lo = [float(v) for v in rng.uniform(0.1, 0.8, 2)]
+        hi = [a + 0.2 * float(rng.uniform()) for a in lo]
+        balls = tp.box(*[arb(a).union(arb(b)) for a, b in zip(lo, hi)])
+        for _ in range(5):
+            q = [float(rng.uniform(a, b)) for a, b in zip(lo, hi)]
+            for ball, v in zip(balls, ref(*[mpmath.mpf(t) for t in q])):
+                assert float(ball.lower()) - 1e-12 <= float(v) <= float(ball.upper()) + 1e-12
+
+
+@pytest.mark.parametrize("collapse", [False, True])
+def test_taylor_box_bounds_dominate_the_values_at_sampled_points(collapse):
+    """One box at a time: the Taylor strategy's bound ≥ mpmath values at random points and corners of the box."""
+    from lkverify.certify.engine import Objective, Taylor
+    from lkverify.certify.regions import parse_region
+    rng = np.random.default_rng(11)
+    mpmath.mp.dps = 40
+    for expr in TAYLOR_EXPRS:
+        vs = sorted(expr.free_symbols, key=str)
+        ref = sympy.lambdify(vs, expr, modules="mpmath")
+        region = parse_region({v: (-1, 2) for v in vs}, [expr])
+        enc = Taylor(Objective(expr, region), collapse=collapse)
+        assert enc.tp is not None and enc.tp.order == 3
+        for _ in range(25):
+            lo = rng.uniform(-1, 0.9, len(vs))
+            hi = lo + rng.uniform(0.0, 0.6, len(vs)) * rng.choice([1.0, 0.05], len(vs))
+            out = enc.bound(0, tuple(map(float, lo)), tuple(map(float, hi)))
+            pts = [[rng.uniform(a, c) for a, c in zip(lo, hi)] for _ in range(60)]
+            pts += [[rng.choice([a, c]) for a, c in zip(lo, hi)] for _ in range(8)]
+            top = max(float(ref(*[mpmath.mpf(t) for t in p])) for p in pts)
+            assert out.upper >= top, (expr, lo, hi, out.upper, top)
+            assert all(a <= c <= h for a, c, h in zip(out.lo, out.centre, out.hi))
+            assert out.centre_value.contains(ref(*[mpmath.mpf(t) for t in out.centre])) or \
+                abs(float(out.centre_value.mid()) - float(ref(*[mpmath.mpf(t) for t in out.centre]))) < 1e-12
+
+
+def test_taylor_bound_is_tight_at_an_interior_maximum():
+    """Near an interior maximum the third-order form's excess is third order in the width, the
+    mean-value form's second order: on a box of width 2h around the maximiser of a concave quadratic
+    plus a cubic the Taylor bound exceeds the maximum by O(h³) (a wrong factor in the form shows here)."""
+    from lkverify.certify.engine import MeanValue, Objective, Taylor
+    from lkverify.certify.regions import parse_region
+    expr = -((x - R(1, 3)) ** 2 + 2 * (y - R(1, 5)) ** 2 - (x - R(1, 3)) * (y - R(1, 5))) + (x - R(1, 3)) ** 3
+    for h in (R(1, 10), R(1, 100)):
+        box = {x: (R(1, 3) - h, R(1, 3) + h), y: (R(1, 5) - h, R(1, 5) + h)}
+        region = parse_region(box, [expr])
+        obj = Objective(expr, region)
+        t = Taylor(obj, collapse=False).bound(0, region.lo_out, region.hi_out)
+        m = MeanValue(obj, collapse=False).bound(0, region.lo_out, region.hi_out)
+        hf = float(h)
+        assert t.upper >= 0.0                              # the maximum is 0, at (1/3, 1/5)
+        assert t.upper <= 2 * hf ** 3                      # the cubic's ⅙·6·h³ = h³, doubled for rounding
+        assert m.upper >= 0.5 * hf ** 2                    # while the mean-value form stays second order
+        assert t.upper < m.upper
+
+
+def test_taylor_falls_back_where_second_derivatives_jump():
+    """Abs and Max have no Hessian: the strategy is the mean-value form there, still sound."""
+    from lkverify.certify.engine import Objective, Taylor
+    from lkverify.certify.regions import parse_region
+    expr = sympy.Abs(x - R(1, 3)) * (1 - y ** 2) + sympy.Max(x, y) / 4
+    region = parse_region({x: (0, 1), y: (-1, 1)}, [expr])
+    assert Taylor(Objective(expr, region)).tp is None
+    res = sup_bound(expr, {x: (0, 1), y: (-1, 1)}, enclosure="taylor")
+    assert res.status is Status.CERTIFIED
+    assert arb(res.certified) >= arb(2) / 3 + arb(1) / 4        # at x = 1, y = 0
+    assert res.certified <= 1.01 * (2 / 3 + 1 / 4)
+
+
+def test_taylor_certifies_a_flat_quadratic_form_with_fewer_boxes():
+    """sup over t ∈ [0, 1] and unit ω of ωᵀA(t)ω = max over t of λ_max(A(t)): a quadratic form in ω
+    (flat directions in the angles), like the c_A template of aleksandrov2023.theorem3."""
+    t, th, ph = sympy.symbols("t theta phi")
+    w = unit_vector_angles(th, ph).value
+    A0 = sympy.Matrix([[5, 1, R(1, 2)], [1, R(49, 10), R(3, 10)], [R(1, 2), R(3, 10), 1]])
+    A1 = sympy.Matrix([[0, 1, 0], [1, 0, 1], [0, 1, -1]])
+    A = A0 + sympy.sin(t) * A1 - t ** 2 * sympy.eye(3)
+    expr = (w.T * A * w)[0]
+    box = {t: (0, 1), th: (0, sympy.pi / 2), ph: (0, 2 * sympy.pi)}   # even in ω: a hemisphere suffices
+    from scipy.optimize import minimize_scalar
+    An = sympy.lambdify(t, A, "numpy")
+    lam = lambda tt: float(np.linalg.eigvalsh(np.array(An(tt), dtype=float))[-1])
+    slow = -minimize_scalar(lambda tt: -lam(tt), bounds=(0, 1), method="bounded", options={"xatol": 1e-10}).fun
+    out = {}
+    for enc in ("mean-value", "taylor"):
+        res = sup_bound(expr, box, accuracy=Accuracy(rel_gap=1e-3), enclosure=enc)
+        assert res.status is Status.CERTIFIED
+        assert res.certified >= slow - 1e-12 and res.lower <= slow + 1e-9
+        assert res.certified <= slow * (1 + 1.1e-3)
+        out[enc] = res
+    assert out["taylor"].boxes * 3 < out["mean-value"].boxes
+
+
+def test_c_A_template_is_certified_within_one_percent_by_taylor():
+    """The c_A template of aleksandrov2023.theorem3 (Θ = diag(5, 6, 4), F = I, r = (1,1,1)/√3) against
+    the slow path sup over the cap of λ_max(M(s)), M(s) the symmetric matrix of the form in ω."""
+    rho, psi, th, ph = sympy.symbols("rho psi theta phi", real=True)
+    theta_m = sympy.diag(5, 6, 4)
+    cap = unit_vector_near(R_DIR, rho_max=R(1, 2), rho=rho, psi=psi)
+    sph = unit_vector_angles(th, ph)
+    s, w = cap.value, sph.value
+    expr = -(w.cross(s).cross(R_DIR).T * theta_m * w)[0]
+    box = {**cap.region, **sph.region, th: (0, sympy.pi / 2)}
+    W = sympy.Matrix(sympy.symbols("w0:3"))
+    M = sympy.lambdify((rho, psi), sympy.hessian(-(W.cross(s).cross(R_DIR).T * theta_m * W)[0], list(W)) / 2)
+    slow = max(float(np.linalg.eigvalsh(np.array(M(a, p), dtype=float))[-1])
+               for a in np.linspace(0, 0.5, 51) for p in np.linspace(0, 2 * np.pi, 91))   # ≤ the sup
+    res = sup_bound(expr, box, accuracy=Accuracy(rel_gap=5e-3), budget=Budget(seconds=120, boxes=40_000),
+                    enclosure="taylor")
+    assert res.status is Status.CERTIFIED
+    assert res.certified >= slow and res.certified >= res.lower >= slow - 1e-3
+    assert res.gap <= 5e-3 and res.certified <= 1.01 * slow
 
 
 # ---------------------------------------------------------------------------

@@ -43,6 +43,14 @@ __all__ = ["ChainResult", "Decay", "TermBound", "TermResult", "TermwiseBound"]
 _WEAKEST = (Status.FAILED, Status.UNDECIDED, Status.SIMULATED, Status.ESTIMATED, Status.CERTIFIED)
 
 
+def _constant_text(name, value, info) -> str:
+    """``c = 5.636 (certified; estimate 5.608, gap 0.50 %)``."""
+    est = (info or {}).get("estimate")
+    if est is None or not est:
+        return f"{name} = {float(value):.6g} (certified)"
+    return f"{name} = {float(value):.6g} (certified; estimate {est:.6g}, gap {(float(value) - est) / abs(est):.2%})"
+
+
 def _put(expr, constants: Mapping):
     """``expr`` with the symbols named like certified constants replaced by their (rational) values."""
     expr = sympy.sympify(expr)
@@ -341,7 +349,7 @@ class TermwiseBound:
                 detail = (f"the stated bound is not the rule's: the rule gives {bound}, the step states {stated} "
                           f"(difference {rest} not shown ≥ 0)")
         if status.is_proof:
-            constant_note = "; ".join(f"{n} = {float(v):.6g} (certified)" for a in apps for n, v, _ in a.constants)
+            constant_note = "; ".join(_constant_text(n, v, info) for a in apps for n, v, info in a.constants)
             detail = f"{rule}: {len(sum((list(a.conditions) for a in apps), []))} side conditions hold" + (
                 f"; {constant_note}" if constant_note else "")
             return TermResult(tb.terms, statement, status, detail, rule, tuple(apps), bound=bound)
@@ -488,7 +496,7 @@ class Decay:
                                   {"d": env.d, "rate": env.kappa, "p": env.p}, env.text()))
         if cert.status is Status.CERTIFIED:
             dt = cert.constants.get("delta_tilde")
-            detail = (f"V̇ ≤ −c̃V^{self.p} with c̃ = {cert.constants.get('c_tilde', float('nan')):.4g} on the region; "
+            detail = (f"V̇ ≤ −c̃V^({self.p}) with c̃ = {cert.constants.get('c_tilde', float('nan')):.4g} on the region; "
                       f"certified for ‖χ‖ < δ̃ = {dt:.4g}; " + "; ".join(env.text() for env in cert.envelopes))
         else:
             detail = cert.detail

@@ -65,7 +65,7 @@ __all__ = ["Application", "CauchySchwarz", "Context", "Equal", "Nonpositive", "N
 #: how a Template rule certifies its supremum (as lkverify.certify.constants.ConstantsTuning's defaults)
 TEMPLATE_ACCURACY = None  # set below (Accuracy(rel_gap=5e-3)); kept lazy to avoid an import cycle
 TEMPLATE_BOXES = 40_000
-TEMPLATE_ENCLOSURE = "mean-value"
+TEMPLATE_ENCLOSURE = "taylor"
 
 
 # -- context --------------------------------------------------------------------------------
@@ -885,7 +885,7 @@ class Template(Rule):
         from ..charts import unit_vector_angles, unit_vector_near
 
         e = ctx.at(term) if direction == "upper" else -ctx.at(term)
-        rep, box, back, scales = {}, {}, {}, []
+        rep, box, back, scales, flips = {}, {}, {}, [], []
         den = sympy.S.One
         for k, (name, power) in enumerate(self.exponents.items()):
             m = ctx.measure(name)
@@ -910,6 +910,7 @@ class Template(Rule):
                 ch = unit_vector_angles(th, ph)
                 value = ref + E * ch.value
                 box.update(ch.region)
+                flips.append((E, th))
             for f, x in zip(state.functions, value):
                 rep[f(t)] = x
             den *= E ** power
@@ -923,6 +924,10 @@ class Template(Rule):
                                       "(a power of its norm remains after division)")
         if q.atoms(AppliedUndef) or q.has(sympy.Integral):
             raise _NotHomogeneous("the term involves states or histories that no measure of the template charts")
+        # a ratio even in a direction v̂ (v̂ → −v̂, i.e. E → −E) needs only the upper hemisphere θ ∈ [0, π/2]
+        for E, th in flips:
+            if sympy.expand(q - q.xreplace({E: -E})) == 0:
+                box[th] = (0, sympy.pi / 2)
         return q.xreplace(back), box
 
     def apply(self, term, direction, ctx):
