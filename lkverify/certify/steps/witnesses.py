@@ -88,8 +88,9 @@ value at all c_k = 0 (and the infimum over them).  A constant whose symbol is po
 encloses the quotient; ``exact["factors"]`` names γ).
 
 The search builds the exact parametric expression once per piece count, lambdifies it
-(vectorised over points, so a finite-difference gradient or a line search costs one
-call), and runs a small BFGS ascent from ``starts`` random starts (``numpy.random.default_rng(seed)``), every second
+(vectorised over points, so a finite-difference gradient costs one call), and runs
+SciPy's L-BFGS-B from ``starts`` random starts (``numpy.random.default_rng(seed)``; one BLAS
+thread, via threadpoolctl, since threaded BLAS only spins on this tiny algebra), every second
 one a *rotation start* (when a state has a history or delayed values): the history
 pieces and delayed values along a rotation of the value at t in a random plane (for
 unit vectors often the plane through the centre r, the papers' counterexample; for
@@ -1447,16 +1448,19 @@ def _ball(expr, zballs):
 
 
 #: step lengths tried at once along a search direction (one vectorised evaluation)
-_STEPS = 2.0 ** np.arange(2, -17, -1)
+
+
+class _Stop(Exception):
+    """Raised from inside the optimiser when the budget runs out (the best point is kept)."""
 
 
 def _optimise(model: _Model, p0: np.ndarray, deadline: Deadline, best: list, maxiter: int = 200):
-    """One local maximisation of the objective from ``p0``; ``best`` = [value, point] is updated.
+    """One local maximisation of the objective from ``p0`` (SciPy's L-BFGS-B); ``best`` = [value, point] is updated.
 
-    A small BFGS ascent in NumPy: finite-difference gradients and a line search over
-    :data:`_STEPS` are each a single vectorised call of the objective.  (SciPy's L-BFGS-B
-    goes through threaded BLAS, which spins on a loaded machine.)
+    The finite-difference gradient is one vectorised call of the objective (n + 1 points).
     """
+    from scipy.optimize import minimize
+
     n = model.nparams
     scale = model.scale
 
@@ -1465,62 +1469,32 @@ def _optimise(model: _Model, p0: np.ndarray, deadline: Deadline, best: list, max
 
     def note(f, x):
         if f > best[0]:
-            best[0], best[1] = float(f), x.copy()
+            best[0], best[1] = float(f), np.array(x, dtype=float).copy()
 
     if n == 0:
         note(float(values(p0.reshape(0, 1))[0]), p0)
         return
     idx = np.arange(n)
 
-    def grad(x):
+    def negative(x):
+        if deadline.expired:
+            raise _Stop
         h = 1e-7 * np.maximum(1.0, np.abs(x))
         P = np.tile(x[:, None], (1, n + 1))
         P[idx, idx + 1] += h
         v = values(P)
-        g = (v[1:] - v[0]) / h
-        return float(v[0]), np.where(np.isfinite(g), g, 0.0)
-
-    x = np.array(p0, dtype=float)
-    f, g = grad(x)
-    if not np.isfinite(f):
-        return
-    note(f, x)
-    H = None
-    quiet = 0
-    for _ in range(maxiter):
-        if deadline.expired:
-            return
-        gn = float(np.linalg.norm(g))
-        if not gn > 1e-12:
-            return
-        d = g * (0.5 / gn) if H is None else H @ g
-        if H is not None and not d @ g > 0:
-            H, d = None, g * (0.5 / gn)
-        cand = x[:, None] + d[:, None] * _STEPS[None, :]
-        vals = values(cand)
-        k = int(np.argmax(vals))
-        if not vals[k] > f:
-            if H is None:
-                return
-            H = None
-            continue
-        x_new = cand[:, k]
-        f_new, g_new = grad(x_new)
-        if not np.isfinite(f_new):
-            return
-        s_, y_ = x_new - x, g - g_new          # BFGS for −f
-        sy = float(s_ @ y_)
-        if sy > 1e-12 * float(np.linalg.norm(s_) * np.linalg.norm(y_)):
-            if H is None:
-                H = (sy / float(y_ @ y_)) * np.eye(n)
-            rho = 1.0 / sy
-            V = np.eye(n) - rho * np.outer(s_, y_)
-            H = V @ H @ V.T + rho * np.outer(s_, s_)
-        quiet = quiet + 1 if f_new - f < model.tol else 0
-        x, f, g = x_new, f_new, g_new
+        f = float(v[0])
+        if not np.isfinite(f):
+            return np.inf, np.zeros(n)
         note(f, x)
-        if quiet >= 3:
-            return
+        g = (v[1:] - v[0]) / h
+        return -f, -np.where(np.isfinite(g), g, 0.0)
+
+    try:
+        minimize(negative, np.array(p0, dtype=float), jac=True, method="L-BFGS-B",
+                 options={"maxiter": maxiter, "ftol": max(model.tol, 1e-15)})
+    except _Stop:
+        return
 
 
 def _recheck(model: _Model, p: np.ndarray):
@@ -1601,6 +1575,20 @@ def _witness(model: _Model, records, zexact, zballs, A, coefficients) -> Witness
     return Witness((float_down(A), float_up(A)), state, history, measures, terms, exact, coefficients)
 
 
+def _single_threaded(search):
+    """Run the search with one BLAS thread: its algebra is tiny and threaded BLAS only spins (threadpoolctl)."""
+
+    @functools.wraps(search)
+    def run(*args, **kwargs):
+        from threadpoolctl import threadpool_limits
+
+        with threadpool_limits(limits=1):
+            return search(*args, **kwargs)
+
+    return run
+
+
+@_single_threaded
 def search_witness(lhs, rhs, *, system, values, measures, region=None, exists=(), nonnegative=(),
                    pieces=(1, 2, 3, 5), starts=24, budget=None, seed=0, time=None) -> Witness | None:
     """Search for a state and a history that refute ``lhs ≤ rhs``; return a rechecked :class:`Witness` or None.
