@@ -189,3 +189,27 @@ def test_homogeneous_rewrite_certifies_the_constant_and_checks_the_degree(ctx):
     assert 2 ** 0.3 <= kappa <= 2 ** 0.3 * 1.01
     bad = Homogeneous(("e", "e2"), e**2 + e2**2, "c", factor=w).rewrite(w * g, c2)
     assert bad.status is Status.FAILED and "homogeneous" in bad.detail
+
+
+def test_young_with_the_wrong_weight_is_rejected_as_a_justification():
+    from lkverify import Functional
+    from lkverify.certify.steps.chain import TermBound, TermwiseBound
+
+    T = Term(omega(t).dot(s(t).cross(R)), text="ωᵀ(s×r)")
+    V = Functional([T])
+    cs = CauchySchwarz(omega(t), s(t).cross(R), (measured(W), crossed(measured(E), unit(R))))
+    eps = sympy.Rational(1, 3)
+    right = eps * w**2 / 2 + e**2 / (2 * eps)            # w·e ≤ εw²/2 + e²/(2ε)
+    wrong = eps * w**2 / 2 + e**2 / 2                     # the weight of e² forgotten
+    values = P.resolve({}, use_defaults=True)
+
+    def step(bound):
+        return TermwiseBound("Young", V, SYS, "V", [TermBound("ωᵀ(s×r)", bound, cs, then=(Young(w, e, eps=eps),))],
+                             bound, tuple(MEASURES.values()), region=REGION, witness_seconds=2.0)
+
+    assert step(right).check(values).status is Status.EXACT
+    res = step(wrong).check(values)
+    assert not res.status.is_proof
+    assert "the stated bound is not the rule's" in res.terms[0].detail
+    # and it is false: e = 1/10, w = 1/10·… gives ωᵀ(s×r) close to w·e > εw²/2 + e²/2 for w ≈ 3e
+    assert res.status is Status.FAILED
