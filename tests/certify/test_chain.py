@@ -161,3 +161,12 @@ def test_theorem3_report_lists_the_chain(values):
     card = report.to_json() if hasattr(report, "to_json") else None
     if card is not None:
         json.dumps(card)
+
+
+def test_the_chain_on_a_region_twice_too_large_names_the_failed_decay_link_with_a_point(checked):
+    choices = dict(C.CHOICES)
+    values = P.resolve({**choices, "delta_e": "1/100", "delta_w": "3142/9995"}, use_defaults=True)
+    steps_at = {role: (step, res) for role, (step, res) in checked.items()}  # the steps hold on any smaller cap
+    rows, status, detail = C.DECAY.certify(steps_at, values, budget=60)
+    assert status is Status.FAILED, detail
+    assert "W =" in detail and "≥ 0" in detail

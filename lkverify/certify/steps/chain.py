@@ -487,6 +487,13 @@ class Decay:
         except UnsupportedInput as exc:
             return [], Status.UNDECIDED, str(exc)
         if cert is None:
+            point = _positive_rate_point(model)
+            if point is not None:
+                at, value = point
+                where = ", ".join(f"{k} = {v}" for k, v in at.items())
+                return [], Status.FAILED, (f"refuted on this region: at the point {where} of its box W = "
+                                           f"{float(value):.4g} ≥ 0 (rechecked in interval arithmetic), so V̇ ≤ W gives no decay there; choose a "
+                                           f"smaller region or other functional parameters")
             return [], Status.UNDECIDED, (
                 "the estimator finds no admissible constants: V̇ ≥ 0 is sampled on the region or the model's "
                 "shape is not covered (choose a smaller region or other functional parameters)")
@@ -504,3 +511,37 @@ class Decay:
                 what, point = cert.counterexamples[0]
                 detail += f"; witness (a point of the region's box where it fails): {what} at {point}"
         return results, cert.status, detail
+
+
+def _positive_rate_point(model, grid: int = 41):
+    """A point of the region's box (on an outer face) where W ≥ 0, rechecked exactly; None if none is found.
+
+    W is the right-hand side of the checked V̇ ≤ W: at such a point the decay model cannot
+    hold on this region whatever c̃ is.
+    """
+    import numpy as np
+
+    from ..intervals import sign_of
+
+    vs = list(model.variables)
+    his = [float(model.region[v]) for v in vs]
+    f = sympy.lambdify(vs, model.vdot, "numpy")
+    ticks = np.concatenate([[0.0], np.geomspace(1e-6, 1.0, grid - 1)])
+    best = None
+    for k in range(len(vs)):
+        axes = [np.array([his[i]]) if i == k else ticks * his[i] for i in range(len(vs))]
+        mesh = np.meshgrid(*axes, indexing="ij")
+        with np.errstate(all="ignore"):
+            val = np.broadcast_to(f(*mesh), mesh[0].shape)
+        idx = np.unravel_index(np.nanargmax(val), val.shape)
+        if np.isfinite(val[idx]) and (best is None or val[idx] > best[0]):
+            best = (float(val[idx]), [float(m[idx]) for m in mesh])
+    if best is None or best[0] < 0:
+        return None
+    at = {str(v): sympy.Rational(x).limit_denominator(10**6) for v, x in zip(vs, best[1])}
+    at = {k: min(v, sympy.nsimplify(model.region[sympy.Symbol(k, nonnegative=True)])) for k, v in at.items()}
+    value = model.vdot.xreplace({v: at[str(v)] for v in vs})
+    sign = sign_of(value)
+    if sign.sign is None or sign.sign < 0 or all(x == 0 for x in at.values()):
+        return None
+    return at, value
