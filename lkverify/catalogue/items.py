@@ -287,14 +287,7 @@ class Theorem(Item):
                 links.append(Link("decay on the region", None, "not attempted: a bound step is not proved"))
             else:
                 links.append(decay)
-            others = [r for r in results if r.kind == "identity" and r.name not in {c.name for c in own}]
-            if others:
-                links.append(Link("intermediate identities", _combined([r.status for r in others]),
-                                  ", ".join(f"{r.name}: {r.status}" for r in others)))
-            ready = all(link.status is not None and link.status.is_proof for link in links)
-            links.append(Link("conclusion", Status.EXACT if ready else None,
-                              "follows from the links above" if ready else "rests on the links above"))
-            return tuple(links)
+            return _concluded(links, results, own)
         links.append(Link("V ≤ U(‖x_t‖), U continuous, U(0) = 0", None if upper is None else upper.status,
                           "no bound step of this theorem checks it" if upper is None else upper.detail))
         for role, text in (("lower", "V ≥ φ(‖state‖), φ positive definite"),
@@ -310,14 +303,19 @@ class Theorem(Item):
                               "; ".join(f"{b.name}: {by_name[b.name].status}"
                                         + (f", bound: {definite[b.name].detail}" if b.name in definite else "")
                                         for b in steps)))
-        others = [r for r in results if r.kind == "identity" and r.name not in {c.name for c in own}]
-        if others:
-            links.append(Link("intermediate identities", _combined([r.status for r in others]),
-                              ", ".join(f"{r.name}: {r.status}" for r in others)))
-        ready = all(link.status is not None and link.status.is_proof for link in links)
-        links.append(Link("conclusion", Status.EXACT if ready else None,
-                          "follows from the links above" if ready else "rests on the links above"))
-        return tuple(links)
+        return _concluded(links, results, own)
+
+
+def _concluded(links: list, results, own) -> tuple:
+    """The links with the intermediate identities and the conclusion appended."""
+    others = [r for r in results if r.kind == "identity" and r.name not in {c.name for c in own}]
+    if others:
+        links.append(Link("intermediate identities", _combined([r.status for r in others]),
+                          ", ".join(f"{r.name}: {r.status}" for r in others)))
+    ready = all(link.status is not None and link.status.is_proof for link in links)
+    links.append(Link("conclusion", Status.EXACT if ready else None,
+                      "follows from the links above" if ready else "rests on the links above"))
+    return tuple(links)
 
 
 def _best_step(steps, by_name, definite):

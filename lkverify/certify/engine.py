@@ -79,6 +79,22 @@ TAYLOR_CACHE_SIZE = 16
 _TAYLOR_CACHE: dict = {}
 
 
+
+def _collapse(G, lo, hi, indices):
+    """Monotonicity: where ∂f/∂x_i ≥ 0 on the box the maximum is at x_i = hi_i (≤ 0: at lo_i).
+
+    Returns the collapsed (lo, hi) and whether anything changed.
+    """
+    lo, hi, changed = list(lo), list(hi), False
+    for i in indices:
+        if G[i] >= 0:
+            lo[i] = hi[i]
+            changed = True
+        elif G[i] <= 0:
+            hi[i] = lo[i]
+            changed = True
+    return lo, hi, changed
+
 class Goal(enum.Enum):
     """What :meth:`BranchAndBound.run` is asked for."""
 
@@ -343,17 +359,7 @@ class Enclosure:
                 v = self.fv(*X)[0]
             if G is None or not self.collapse:
                 return v, G, X, lo, hi
-            changed = False
-            for i in range(n):
-                if lo[i] < hi[i]:
-                    if G[i] >= 0:
-                        lo = list(lo)
-                        lo[i] = hi[i]
-                        changed = True
-                    elif G[i] <= 0:
-                        hi = list(hi)
-                        hi[i] = lo[i]
-                        changed = True
+            lo, hi, changed = _collapse(G, lo, hi, [i for i in range(n) if lo[i] < hi[i]])
             if not changed:
                 return v, G, X, lo, hi
 
@@ -789,16 +795,7 @@ class Taylor(Enclosure):
                     G[i] = _intersect(G[i], alt)
             if not self.collapse:
                 break
-            changed = False
-            for i in act:
-                if G[i] >= 0:
-                    lo = list(lo)
-                    lo[i] = hi[i]
-                    changed = True
-                elif G[i] <= 0:
-                    hi = list(hi)
-                    hi[i] = lo[i]
-                    changed = True
+            lo, hi, changed = _collapse(G, lo, hi, act)
             if not changed:
                 break
         upper = float_up(v)

@@ -16,7 +16,7 @@ import sympy
 
 from lkverify import Check, Result, t, xi
 from lkverify.certify.steps.chain import TermBound, TermwiseBound
-from lkverify.certify.steps.measures import Region, norm_measure, sup_norm
+from lkverify.certify.steps.measures import attitude_measures
 from lkverify.certify.steps.rules import CauchySchwarz, crossed, measured, scaled, summed, unit
 
 from .equations import PAPER, P, J, a1, a2, eta, gamma, h, nu, omega, r1, r2, s1, s2, system
@@ -29,12 +29,8 @@ WITNESS_TIME = 1
 LABEL = "γνh^{ν−1}ḣ ωᵀJη"
 _derivation = next(c for c in theorem1.claims if c.name == "Vdot_printed")
 
-W_ = norm_measure("w", omega(t), text="‖ω(t)‖")
-E1 = norm_measure("e1", s1(t) - r1, text="‖s1(t) − r1‖")
-E2 = norm_measure("e2", s2(t) - r2, text="‖s2(t) − r2‖")
+(W_, E1, E2), REGION = attitude_measures(omega, (s1, s2), (r1, r2), bound=sympy.Rational(1, 5))
 w, e1, e2 = W_.symbol, E1.symbol, E2.symbol
-REGION = Region({sup_norm("m1", s1(xi) - r1, window=1): sympy.Rational(1, 5),
-                 sup_norm("m2", s2(xi) - r2, window=1): sympy.Rational(1, 5), W_: sympy.Rational(1, 5)})
 alpha6 = sympy.Symbol("alpha6", positive=True)
 h_dot = h(t).diff(t)
 J_norm = sympy.Symbol("J_norm", positive=True)

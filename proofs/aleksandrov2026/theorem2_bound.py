@@ -20,7 +20,7 @@ import sympy
 
 from lkverify import Check, Functional, Result, Status, Term, quad, t, xi
 from lkverify.certify.steps.chain import TermBound, TermwiseBound
-from lkverify.certify.steps.measures import Region, norm_measure, sup_norm
+from lkverify.certify.steps.measures import attitude_measures
 from lkverify.certify.steps.rules import CauchySchwarz, Homogeneous, crossed, measured, scaled, summed, unit
 from lkverify.symbolic.derivative import derivative_along
 
@@ -32,12 +32,8 @@ __all__ = ["REMARK3", "beta_term", "corrected", "printed", "theorem2_bound"]
 #: a point of Remark 3 (β ≤ 0) inside Assumption 2: β = −1, G = 3e^{−2ζ}I, β + ∫G = 1/2 > 0
 REMARK3 = {"beta": "-1", "g": "3*exp(-2*zeta)"}
 
-W_ = norm_measure("w", omega(t), text="‖ω(t)‖")
-E1 = norm_measure("e1", s1(t) - r1, text="‖s1(t) − r1‖")
-E2 = norm_measure("e2", s2(t) - r2, text="‖s2(t) − r2‖")
+(W_, E1, E2), REGION = attitude_measures(omega, (s1, s2), (r1, r2), bound=sympy.Rational(1, 5))
 w, e1, e2 = W_.symbol, E1.symbol, E2.symbol
-REGION = Region({sup_norm("m1", s1(xi) - r1, window=1): sympy.Rational(1, 5),
-                 sup_norm("m2", s2(xi) - r2, window=1): sympy.Rational(1, 5), W_: sympy.Rational(1, 5)})
 c7 = sympy.Symbol("c7", positive=True)
 
 

@@ -37,7 +37,8 @@ from ...declare.symbols import t, xi
 from ...declare.vectors import as_column, norm_squared
 from ...errors import InputError
 
-__all__ = ["KINDS", "Measure", "Region", "norm_measure", "sup_norm", "window_integral_measure", "window_norm"]
+__all__ = ["KINDS", "Measure", "Region", "attitude_measures", "norm_measure", "sup_norm", "window_integral_measure",
+           "window_norm"]
 
 #: the kinds of measure: ‖v(t)‖, (∫‖v(ξ)‖^p)^{1/p}, ∫‖v(ξ)‖^p, max over the window of ‖v(ξ)‖
 KINDS = ("norm", "window_norm", "window_integral", "sup")
@@ -224,3 +225,23 @@ class Region:
 
     def describe(self) -> str:
         return ", ".join(f"{m.text} ≤ {b}" for m, b in self.bounds.items()) or "no bounds"
+
+
+def attitude_measures(omega, vectors, targets, *, bound, window=1):
+    """‖ω(t)‖ and ‖s_i(t) − r_i‖ as measures ``w, e1, e2, …``, and the region bounding them all by ``bound``.
+
+    The region bounds ‖ω(t)‖ and the sup over [t − window, t] of every ‖s_i(ξ) − r_i‖.
+
+    >>> import sympy
+    >>> from lkverify import Frame, Vector
+    >>> s1, s2, s3 = Frame(); r1, r2 = sympy.Matrix([1, 0, 0]), sympy.Matrix([0, 1, 0])
+    >>> (w, e1, e2), region = attitude_measures(Vector("omega"), (s1, s2), (r1, r2), bound=sympy.Rational(1, 5))
+    >>> e1.text, len(region.bounds)
+    ('‖s1(t) − r1‖', 3)
+    """
+    w = norm_measure("w", omega(t), text="‖ω(t)‖")
+    es = [norm_measure(f"e{k}", v(t) - sympy.Matrix(r), text=f"‖{v.name}(t) − r{k}‖")
+          for k, (v, r) in enumerate(zip(vectors, targets), start=1)]
+    sups = {sup_norm(f"m{k}", v(xi) - sympy.Matrix(r), window=window): bound
+            for k, (v, r) in enumerate(zip(vectors, targets), start=1)}
+    return (w, *es), Region({**sups, w: bound})

@@ -444,25 +444,17 @@ def _resolve_norm(nb: Norm, vector, ctx: Context) -> tuple:
     if isinstance(nb.vector, tuple) and nb.vector[0] == "integral":
         _, pointwise, measure, k, weight, _window, holder = nb.vector
         k = ctx.at(k)
-        ints = list(vec)
-        if not all(isinstance(c, sympy.Integral) and len(c.limits) == 1 for c in ints):
-            return None, [_cond("the vector is a window integral ∫ g(ξ)v(ξ)dξ", False, f"got {vector}")]
-        var, lo, hi = ints[0].limits[0]
-        if any(c.limits[0] != (var, lo, hi) for c in ints):
-            return None, [_cond("the components integrate over one window", False)]
-        inner = sympy.Matrix([c.function for c in ints]).subs(var, xi)
-        g = ctx.at(weight)
-        pv = sympy.Matrix(ctx.at(sympy.Matrix(pointwise.vector)))
-        conds.append(_cond(f"the integrand is g(ξ)·v(ξ) with g = {g}", all(ctx.zero(x) for x in inner - g * pv),
-                           "it is not"))
-        pb, pconds = _resolve_norm(pointwise, pv, ctx)
+        parsed = _integrand(vec, pointwise, weight, ctx, vector)
+        if parsed[0] is None:
+            return None, parsed[1]
+        (g, lo, hi, pb), pconds = parsed
         conds += pconds
         if pb is None:
             return None, conds
         P = measure.pointwise()
         conds.append(_cond(f"‖v(ξ)‖ ≤ ‖{measure.name}(ξ)‖^{k}", ctx.zero(ctx.pointwise(pb) - P ** k),
                            f"the pointwise bound is {pb}"))
-        fac, wconds = _window_factor(g, lo.subs(var, xi) if lo.has(var) else lo, hi, measure, k, holder, ctx)
+        fac, wconds = _window_factor(g, lo, hi, measure, k, holder, ctx)
         conds += wconds
         if fac is None:
             return None, conds
@@ -518,9 +510,8 @@ def _resolve_norm(nb: Norm, vector, ctx: Context) -> tuple:
     return nb.bound, conds
 
 
-def _resolve_integrals(vec, pointwise, measures, k, weight, constant, ctx: Context, vector):
-    """‖∫ g v‖ ≤ max g · κ · Σ M_i for window-integral measures M_i of order k (see :func:`integral_of`)."""
-    conds = []
+def _integrand(vec, pointwise, weight, ctx: Context, vector):
+    """((g, lo, hi, pointwise bound), conditions) of a window integral ∫_{lo}^{hi} g(ξ)v(ξ)dξ, or (None, conditions)."""
     ints = list(vec)
     if not all(isinstance(c, sympy.Integral) and len(c.limits) == 1 for c in ints):
         return None, [_cond("the vector is a window integral ∫ g(ξ)v(ξ)dξ", False, f"got {vector}")]
@@ -530,9 +521,17 @@ def _resolve_integrals(vec, pointwise, measures, k, weight, constant, ctx: Conte
     inner = sympy.Matrix([c.function for c in ints]).subs(var, xi)
     g = ctx.at(weight)
     pv = sympy.Matrix(ctx.at(sympy.Matrix(pointwise.vector)))
-    conds.append(_cond(f"the integrand is g(ξ)·v(ξ) with g = {g}", all(ctx.zero(x) for x in inner - g * pv), "it is not"))
+    conds = [_cond(f"the integrand is g(ξ)·v(ξ) with g = {g}", all(ctx.zero(x) for x in inner - g * pv), "it is not")]
     pb, pconds = _resolve_norm(pointwise, pv, ctx)
-    conds += pconds
+    return (g, lo, hi, pb), conds + pconds
+
+
+def _resolve_integrals(vec, pointwise, measures, k, weight, constant, ctx: Context, vector):
+    """‖∫ g v‖ ≤ max g · κ · Σ M_i for window-integral measures M_i of order k (see :func:`integral_of`)."""
+    parsed = _integrand(vec, pointwise, weight, ctx, vector)
+    if parsed[0] is None:
+        return None, parsed[1]
+    (g, lo, hi, pb), conds = parsed
     if pb is None:
         return None, conds
     ps = [sympy.Symbol(f"p_{m.name}", nonnegative=True) for m in measures]

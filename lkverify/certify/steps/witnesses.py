@@ -696,20 +696,15 @@ class _Slot:
 
 
 def _sympify_scalar(expr, what: str) -> sympy.Expr:
-    if isinstance(expr, str):
-        raise InputError(f"{what}: expected a SymPy expression, got the string {expr!r}; build it with sympy")
+    """A scalar SymPy expression (a 1×1 matrix taken as its entry), through the interval layer's one conversion."""
+    from ..intervals.convert import _sympify
+
     if isinstance(expr, sympy.MatrixBase):
         if expr.shape != (1, 1):
             raise InputError(f"{what}: expected a scalar, got a {expr.shape[0]}x{expr.shape[1]} matrix; "
                              f"take a component or a dot product")
         expr = expr[0, 0]
-    try:
-        out = sympy.sympify(expr, strict=True)
-    except (sympy.SympifyError, TypeError) as exc:
-        raise InputError(f"{what}: expected a SymPy expression, got {type(expr).__name__} {expr!r}") from exc
-    if not isinstance(out, sympy.Expr):
-        raise InputError(f"{what}: expected a scalar SymPy expression, got {type(out).__name__}")
-    return out
+    return _sympify(expr, what)
 
 
 def _lhs_terms(lhs) -> list:
