@@ -33,10 +33,35 @@ from __future__ import annotations
 
 import enum
 
-__all__ = ["Status"]
+__all__ = ["Label", "Status"]
 
 
-class Status(str, enum.Enum):
+class Label(enum.Enum):
+    """An enum whose members stand for their string values.
+
+    A member equals its value, hashes like it and prints as it, so reports and JSON can
+    use either — without inheriting the ~80 methods of ``str`` (which fill ``help()``).
+
+    >>> Status.EXACT == "exact", {"exact": 1}[Status.EXACT], f"{Status.FAILED:>8}"
+    (True, 1, '  failed')
+    """
+
+    def __str__(self) -> str:
+        return self.value
+
+    def __format__(self, spec: str) -> str:
+        return format(self.value, spec)
+
+    def __eq__(self, other) -> bool:
+        if isinstance(other, str):
+            return self.value == other
+        return self is other
+
+    def __hash__(self) -> int:
+        return hash(self.value)
+
+
+class Status(Label):
     """How a result was obtained.
 
     Examples
@@ -55,9 +80,6 @@ class Status(str, enum.Enum):
     SIMULATED = "simulated"
     FAILED = "failed"
     UNDECIDED = "undecided"
-
-    def __str__(self) -> str:
-        return self.value
 
     @property
     def is_proof(self) -> bool:

@@ -217,9 +217,35 @@ class Theorem(Item):
                                                       progress=progress)
             results += rows
             decay = Link("decay on the region (V̇ ≤ −c̃V^p, envelope)", status, detail)
-        return Report(self.qualified_name, {k: _show(v) for k, v in everything.items()}, tuple(results),
+        return Report(self.qualified_name, self.shown(everything), tuple(results),
                       self._verdict(results, definite, upper, checked, decay), tuple(details),
                       self.chain(results, definite=definite, upper=upper, steps=checked, decay=decay))
+
+    def shown(self, values: Mapping) -> dict:
+        """The parameters the theorem uses (its system, functional, hypotheses, claims and steps), shown.
+
+        A paper's registry holds the parameters of all its theorems; a report lists only
+        those this theorem's statements are written in.
+        """
+        used: set = set()
+        for statement in (*self.hypotheses, *self.claims, *self.bounds, *self.steps):
+            used |= _symbols_of(statement)
+        exprs = [term.expr for eq in self.system.equations for term in eq.terms]
+        if self.functional is not None:
+            exprs.append(self.functional.expr)
+        import sympy
+        from sympy.core.function import AppliedUndef
+
+        for e in exprs:
+            e = sympy.sympify(e) if not isinstance(e, sympy.MatrixBase) else e
+            used |= e.free_symbols | {a.func for a in e.atoms(AppliedUndef)}
+        P = self.parameters
+        out = {}
+        for name, value in values.items():
+            atoms = set(P[name].substitution(value))
+            if atoms & used or name in self.choices:
+                out[name] = _show(value)
+        return out
 
     def _verdict(self, results, definite=None, upper=None, steps=None, decay=None) -> str:
         text = theorem_verdict(self.chain(results, definite=definite, upper=upper, steps=steps, decay=decay))

@@ -18,11 +18,12 @@ F_22/(F_11*F_22 - F_12**2)
 from __future__ import annotations
 
 import dataclasses
-import enum
 from collections.abc import Callable, Iterable, Mapping, Sequence
 
 import numpy as np
 import sympy
+
+from ..status import Label
 from sympy.core.function import AppliedUndef
 
 from ..errors import InputError
@@ -32,7 +33,7 @@ from .vectors import dot
 __all__ = ["ParameterKind", "ParameterSpec", "Parameters", "SymmetricMatrix"]
 
 
-class ParameterKind(str, enum.Enum):
+class ParameterKind(Label):
     """What a parameter is, and so which values are admissible."""
 
     REAL = "real scalar"

@@ -15,13 +15,13 @@ import math
 
 import sympy
 
-from ..status import Status
+from ..status import Label, Status
 from ..errors import InputError
 
 __all__ = ["Kind", "Result", "Report", "jsonable"]
 
 
-class Kind(str, enum.Enum):
+class Kind(Label):
     """What a result is about (the ``kind`` of the JSON card).
 
     >>> Kind("identity") is Kind.IDENTITY
@@ -39,9 +39,6 @@ class Kind(str, enum.Enum):
     SIMULATION = "simulation"
     LINEAR = "linear"
 
-    def __str__(self) -> str:
-        return self.value
-
 
 KINDS = tuple(k.value for k in Kind)
 
@@ -50,6 +47,8 @@ def jsonable(value):
     """Convert SymPy/NumPy values to JSON-friendly ones (integers stay integers)."""
     if value is None or isinstance(value, (bool, str)):
         return value
+    if isinstance(value, enum.Enum):
+        return jsonable(value.value)
     if isinstance(value, dict):
         return {str(k): jsonable(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
@@ -139,7 +138,7 @@ class Report:
 
     def as_text(self) -> str:
         """A readable table: kind, name, status, value, detail; then details and the verdict."""
-        rows = [(r.kind, r.name, r.status.value, _fmt_value(r.value), r.detail) for r in self.results]
+        rows = [(str(r.kind), r.name, r.status.value, _fmt_value(r.value), r.detail) for r in self.results]
         head = ("kind", "name", "status", "value", "detail")
         widths = [max(len(h), *(len(row[i]) for row in rows)) if rows else len(h) for i, h in enumerate(head[:4])]
         lines = [f"{self.item}"]
@@ -155,11 +154,26 @@ class Report:
         return "\n".join(lines)
 
 
+#: the keys under which a result's dict value carries its headline number, in order of preference
+_HEADLINE = ("value", "certified", "cap")
+
+
 def _fmt_value(value) -> str:
+    """The value column of the text table: a number, or the headline number of a dict value.
+
+    >>> _fmt_value({"value": 13.951640472760788, "paper": 9.21}), _fmt_value({"certified": 5.63583}), _fmt_value(None)
+    ('13.9516', '5.63583', '')
+    """
     if value is None:
         return ""
     if isinstance(value, dict):
-        return "see below" if value.get("differences") else ""
+        if value.get("differences"):
+            return "see below"
+        for key in _HEADLINE:
+            x = value.get(key)
+            if isinstance(x, (int, float)) and not isinstance(x, bool):
+                return f"{x:.6g}"
+        return ""
     v = jsonable(value)
     if isinstance(v, float):
         return f"{v:.6g}"

@@ -87,27 +87,41 @@ class IdentityResult:
     difference_at_witness: float | None = None
     numeric_points: int = 0
     seconds: float = 0.0
+    confirmed: tuple = ()  # (claimed labels, derived labels, claimed LaTeX) of the groups that agree exactly
 
     @property
     def holds(self) -> bool:
         return self.status is Status.EXACT
 
     def to_json(self) -> dict:
-        return {"differences": [d.to_json() for d in self.differences], "witness": self.witness,
+        return {"differences": [d.to_json() for d in self.differences],
+                "confirmed": [{"claimed": list(c), "derived": list(d), "claimed_latex": list(lat)}
+                              for c, d, lat in self.confirmed],
+                "witness": self.witness,
                 "difference_at_witness": self.difference_at_witness, "numeric_points": self.numeric_points,
                 "seconds": round(self.seconds, 3)}
 
     def as_text(self) -> str:
+        """Every group of terms: the differing ones with their difference, then the confirmed ones."""
         lines = [f"{self.name}: {self.status} — {self.detail}"]
         for d in self.differences:
             lines.append(f"  - {d.message}")
-            lines.append(f"      difference: {d.difference_text}"
+            lines.append(f"      difference: {_short(d.difference_text)}"
                          + (f"  (= {d.value:.6g} at the witness)" if d.value is not None else ""))
+        for c, d, _ in self.confirmed:
+            printed, derived = " + ".join(f"[{x}]" for x in c), " + ".join(f"[{x}]" for x in d)
+            if not c:
+                lines.append(f"  ✓ derived terms that cancel each other: {derived}")
+            elif not d:
+                lines.append(f"  ✓ printed terms that cancel each other: {printed}")
+            else:
+                lines.append(f"  ✓ confirmed: printed {printed} = derived {derived}")
         return "\n".join(lines)
 
 
 def _short(s: str, n: int = 300) -> str:
-    return s if len(s) <= n else s[: n - 1] + "…"
+    """``s``, or its first n characters and how long the whole is (the whole is in the JSON card)."""
+    return s if len(s) <= n else s[: n - 1] + f"… ({len(s)} characters; the whole expression is in --json)"
 
 
 def check_identity(claimed: Sequence[Term], reference: Sequence[Term], *, name: str = "identity",
@@ -150,6 +164,7 @@ def check_identity(claimed: Sequence[Term], reference: Sequence[Term], *, name: 
     residue_check = None
     refuted = exact_zero = False
     differences = ()
+    confirmed = ()
     try:
         with deadline.enforced():
             # 1. numeric witnesses (appended to ``witnesses`` one by one, so a budget cut keeps them)
@@ -163,6 +178,7 @@ def check_identity(claimed: Sequence[Term], reference: Sequence[Term], *, name: 
             total = sum(nf.polys[: len(claimed)], nf.ring.zero) - sum(nf.polys[len(claimed):], nf.ring.zero)
             exact_zero = total == 0
             differences = () if exact_zero else _term_report(claimed, reference, nf, witness)
+            confirmed = _confirmed_groups(claimed, reference, nf)
             # 3. a nonzero residue is evaluated by itself (no cancellation against the large terms)
             if not exact_zero:
                 residue_check = _residue_at_witnesses(nf, total, witnesses, deadline)
@@ -173,8 +189,9 @@ def check_identity(claimed: Sequence[Term], reference: Sequence[Term], *, name: 
         return IdentityResult(name, Status.UNDECIDED, f"{exc} before the check finished",
                               witness=w0.describe(states) if w0 else None,
                               numeric_points=len(witnesses), seconds=time.monotonic() - start)
-    return _verdict(name, exact_zero, refuted, worst, residue_check, differences,
-                    witness.describe(states) if witness else None, points, time.monotonic() - start)
+    result = _verdict(name, exact_zero, refuted, worst, residue_check, differences,
+                      witness.describe(states) if witness else None, points, time.monotonic() - start)
+    return dataclasses.replace(result, confirmed=confirmed)
 
 
 def _numeric_witnesses(claimed, reference, states, parameters, values, rng, points, deadline, witnesses):
@@ -316,27 +333,9 @@ def _term_report(claimed, reference, nf, witness) -> tuple:
     """Group terms by shared monomials and describe each group that does not cancel."""
     n = len(claimed)
     polys = nf.polys
-    parent = list(range(len(polys)))
-
-    def find(i):
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
-    owner: dict = {}
-    for i, p in enumerate(polys):
-        for mono in p.keys():
-            j = owner.setdefault(mono, i)
-            ri, rj = find(i), find(j)
-            if ri != rj:
-                parent[ri] = rj
-    groups: dict = {}
-    for i in range(len(polys)):
-        groups.setdefault(find(i), []).append(i)
     out = []
     zero = nf.ring.zero
-    for members in groups.values():
+    for members in _groups(polys):
         C = [i for i in members if i < n]
         D = [i for i in members if i >= n]
         sc = sum((polys[i] for i in C), zero)
@@ -383,9 +382,46 @@ def _term_report(claimed, reference, nf, witness) -> tuple:
                 msg = f"printed {ctxt or '(nothing)'} ≠ derived {dtxt or '(nothing)'}"
                 dtext_ = f"({ctxt or '0'}) − ({dtxt or '0'})"
                 dlatex = "\\left(" + (" + ".join(clat) or "0") + "\\right) - \\left(" + (" + ".join(dlat) or "0") + "\\right)"
-        out.append(TermDifference(kind, ctext, dtext, msg, f"{dtext_} = {_short(sympy.sstr(expr))}",
-                                  dlatex, value))
+        out.append(TermDifference(kind, ctext, dtext, msg, f"{dtext_} = {sympy.sstr(expr)}", dlatex, value))
     return tuple(out)
+
+
+def _confirmed_groups(claimed, reference, nf) -> tuple:
+    """The groups of terms (by shared monomials) whose claimed and derived sums agree exactly."""
+    n = len(claimed)
+    groups = _groups(nf.polys)
+    out = []
+    zero = nf.ring.zero
+    for members in groups:
+        C = [i for i in members if i < n]
+        D = [i for i in members if i >= n]
+        if sum((nf.polys[i] for i in C), zero) - sum((nf.polys[i] for i in D), zero) == 0 and (C or D):
+            out.append((tuple(claimed[i].text for i in C), tuple(reference[i - n].text for i in D),
+                        tuple(claimed[i].latex for i in C)))
+    return tuple(out)
+
+
+def _groups(polys) -> list:
+    """Indices of the polynomials grouped by shared monomials (union–find)."""
+    parent = list(range(len(polys)))
+
+    def find(i):
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    owner: dict = {}
+    for i, p in enumerate(polys):
+        for mono in p.keys():
+            j = owner.setdefault(mono, i)
+            ri, rj = find(i), find(j)
+            if ri != rj:
+                parent[ri] = rj
+    groups: dict = {}
+    for i in range(len(polys)):
+        groups.setdefault(find(i), []).append(i)
+    return list(groups.values())
 
 
 def _ratio(a, b):

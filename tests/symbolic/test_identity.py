@@ -55,6 +55,13 @@ def test_theorem3_flipped_sign_is_refuted(theorem3_derived):
     assert diff.kind == "sign"
     assert diff.claimed == ("+(a−τb)‖s−r‖^{μ−1}(s×r)ᵀF⁻¹(s×r)",)
     assert diff.value is not None and abs(diff.value) > 1e-6
+    # the report is term by term: every other printed term is listed as confirmed, none twice
+    confirmed = [c for group in res.confirmed for c in group[0]]
+    assert set(confirmed) == {t.text for k, t in enumerate(terms) if k != i}
+    assert len(confirmed) == len(set(confirmed))
+    text = res.as_text()
+    assert text.count("✓ confirmed") >= 1 and "+(a−τb)" in text
+    assert {g["claimed_latex"][0] for g in res.to_json()["confirmed"] if g["claimed"]} <= {t.latex for t in terms}
 
 
 def test_theorem3_dropped_term_is_refuted(theorem3_derived):
