@@ -1,9 +1,9 @@
 """The ``lkverify`` command line.
 
-``lkverify``                       report of every catalogued item at the papers' defaults
+``lkverify`` (= ``lkverify report [--json]``)  report of every catalogued item at the papers' defaults
 ``lkverify list``                  the catalogue
 ``lkverify check ITEM [--set NAME=VALUE]... [--json] [--budget S] [--load-limit S]``
-``lkverify simulate ITEM [--set NAME=VALUE]... [--history STATE=VALUE]... [--t-end T] [--plot FILE.png] [--envelope] [--json] [--budget S]``
+``lkverify simulate ITEM [--set NAME=VALUE]... [--history STATE=VALUE]... [--t-end T] [--plot FILE.png] [--envelope] [--convention NAME] [--distance {combined,per-vector}] [--json] [--budget S]``
 ``lkverify constants ITEM [--set NAME=VALUE]... [--goal GOAL] [--plot FILE.png] [--json] [--budget S]``
 
 Exit codes: 0 every result holds (for the bare report: the report was produced),
@@ -12,6 +12,9 @@ stderr), 3 an internal error of lkverify (one line on stderr; set the environmen
 variable ``LKVERIFY_TRACEBACK=1`` to see the traceback), 130 interrupted (Ctrl-C).
 Bad input is refused before any computing: values, output paths (``--plot``),
 goals and budgets are checked first.
+
+Progress lines go to stderr (whether or not it is a terminal) once a job has run for
+:data:`PROGRESS_GRACE_SECONDS`, at most one a second; ``--quiet`` silences them.
 
 Budgets (``--budget SECONDS``) are positive finite numbers up to
 :data:`lkverify.options.MAX_BUDGET_SECONDS` (1e6 s); ``inf`` and larger values are
@@ -70,20 +73,28 @@ def _add_load_limit(p) -> None:
 
 
 def _build_parser() -> argparse.ArgumentParser:
+    from .simulate.figures import DISTANCES
+    from .simulate.rigidbody import CONVENTIONS, DEFAULT_CONVENTION
     from .simulate.solver import FLOOR_WINDOW
     from .catalogue.examples import DEFAULT_SIMULATE_BUDGET, MAX_STEPS
 
     p = _Parser(prog="lkverify", description="Check Lyapunov–Krasovskii stability proofs. "
                 "With no command: the report of every catalogued item at the papers' defaults.")
     sub = p.add_subparsers(dest="command", parser_class=_Parser)
-    sub.add_parser("list", help="list the catalogue")
-    rp = sub.add_parser("report", help="report every catalogued item at the papers' defaults (the default job)")
-    rp.add_argument("--json", action="store_true", help="one JSON object per item, in a list")
+    p.add_argument("--quiet", action="store_true", default=False, help=QUIET_HELP)
+    lp = sub.add_parser("list", help="list the catalogue: name, kind (theorem, check, example) and title")
+    _add_quiet(lp)
+    rp = sub.add_parser("report", help="report every catalogued item at the papers' defaults (what the bare "
+                        "`lkverify` does); prints progress lines on stderr, about 1 minute")
+    rp.add_argument("--json", action="store_true", help="print a JSON list with one object per item: item, "
+                    "parameters, results (kind, name, status, value, detail) and verdict")
+    _add_quiet(rp)
     c = sub.add_parser("check", help="check an item's hypotheses and identities")
     c.add_argument("item", help="catalogue name (aleksandrov2023.theorem3), a paper, or path/to/proof.py[::item]")
     c.add_argument("--set", dest="sets", action="append", default=[], metavar="NAME=VALUE",
                    help="a parameter value: a number, diag(2,2,2), [[2,0],[0,2]], or an expression in t")
-    c.add_argument("--json", action="store_true", help="print the JSON object of the design card")
+    c.add_argument("--json", action="store_true", help=JSON_HELP)
+    _add_quiet(c)
     c.add_argument("--budget", type=_seconds, default=60.0, metavar="SECONDS",
                    help="time budget of the whole check (hypotheses and identities); what is unfinished when it is "
                         "spent is undecided (default 60, at most 1e6)")
@@ -97,7 +108,17 @@ def _build_parser() -> argparse.ArgumentParser:
     s.add_argument("--t-end", type=float, default=None, metavar="T", help="final time (default: the example's)")
     s.add_argument("--plot", metavar="FILE.png", help="write the figure (paper style) to this PNG file")
     s.add_argument("--envelope", action="store_true", help="cross-check the example's decay envelope and plot it")
-    s.add_argument("--json", action="store_true", help="print the JSON object of the design card")
+    s.add_argument("--json", action="store_true", help=JSON_HELP + "; for simulate also runs (label, title, "
+                   "resolved parameters, the history used and which states --history overrode), convention, "
+                   "distance, figures (paths written) and versions (lkverify, numpy, scipy, sympy)")
+    s.add_argument("--convention", default=None, metavar="NAME",
+                   help="aircraft-angle convention of the examples' initial data (given as angles), one of: "
+                        + "; ".join(f"{k}: {v}" for k, v in CONVENTIONS.items())
+                        + f" (aliases gost, krylov = yzx; aerospace, nasa = zyx; default {DEFAULT_CONVENTION})")
+    s.add_argument("--distance", choices=sorted(DISTANCES), default="combined",
+                   help="distance of the convergence claims and of the times to 1e-2 and 1e-3: "
+                        + "; ".join(f"{k} = {v}" for k, v in DISTANCES.items()) + " (default combined)")
+    _add_quiet(s)
     s.add_argument("--budget", type=_seconds, default=DEFAULT_SIMULATE_BUDGET, metavar="SECONDS",
                    help=f"time budget for all runs together; a run cut short is undecided (default "
                         f"{DEFAULT_SIMULATE_BUDGET:g}). Steps are at most min(delays) long, so a run needs at least "
@@ -107,8 +128,11 @@ def _build_parser() -> argparse.ArgumentParser:
     _add_load_limit(s)
     k = sub.add_parser("constants", help="compute and certify the constants, region and envelope of a proof")
     k.add_argument("item", help="e.g. aleksandrov2023.theorem3, aleksandrov2017.lemma1")
-    k.add_argument("--set", dest="sets", action="append", default=[], metavar="NAME=VALUE")
-    k.add_argument("--json", action="store_true", help="print the JSON object of the design card")
+    k.add_argument("--set", dest="sets", action="append", default=[], metavar="NAME=VALUE",
+                   help="a parameter value (a number read exactly, diag(2,2,2), [[2,0],[0,2]], a vector [0,0,1]), "
+                        "e.g. --set eps=0.9 for aleksandrov2017.lemma1")
+    k.add_argument("--json", action="store_true", help=JSON_HELP)
+    _add_quiet(k)
     k.add_argument("--plot", metavar="FILE.png", help="write the figure (envelope, or δ(ε) for a lemma)")
     k.add_argument("--budget", type=_seconds, default=150.0, metavar="SECONDS",
                    help="time budget of the whole job; when spent the unfinished results are undecided "
@@ -119,12 +143,35 @@ def _build_parser() -> argparse.ArgumentParser:
     return p
 
 
-def _progress(enabled: bool):
-    start = time.monotonic()
+#: progress lines start once a job has run this long (bad input is refused before: never preceded)
+PROGRESS_GRACE_SECONDS = 3.0
+#: at most one progress line per this many seconds (item lines of the bare report excepted)
+PROGRESS_INTERVAL_SECONDS = 1.0
 
-    def say(msg: str):
-        if enabled:
-            print(f"[{time.monotonic() - start:6.1f}s] {msg}", file=sys.stderr, flush=True)
+QUIET_HELP = "print no progress lines on stderr (by default a job longer than a few seconds prints them)"
+JSON_HELP = ("print one JSON object per item instead of the table: item, parameters, results (kind, name, status, "
+             "value, detail), verdict, and for theorems the chain of links")
+
+
+def _add_quiet(p) -> None:
+    p.add_argument("--quiet", action="store_true", default=argparse.SUPPRESS, help=QUIET_HELP)
+
+
+def _progress(enabled: bool):
+    """``say(msg, force=False)``: a progress line on stderr, after the grace period, throttled."""
+    start = time.monotonic()
+    last = [-math.inf]
+
+    def say(msg: str, force: bool = False):
+        if not enabled:
+            return
+        now = time.monotonic()
+        if now - start < PROGRESS_GRACE_SECONDS:
+            return
+        if not force and now - last[0] < PROGRESS_INTERVAL_SECONDS:
+            return
+        last[0] = now
+        print(f"[{now - start:6.1f}s] {msg}", file=sys.stderr, flush=True)
 
     return say
 
@@ -133,6 +180,8 @@ def main(argv=None) -> int:
     """Run the command line; returns the exit code (see the module docstring)."""
     try:
         args = _build_parser().parse_args(argv)
+        if not hasattr(args, "quiet"):
+            args.quiet = False
     except SystemExit as exc:  # argparse: --help (0) or a usage error (2, one line already printed)
         return exc.code if isinstance(exc.code, int) else 2
     try:
@@ -187,11 +236,11 @@ def _dispatch(args) -> int:
             print(f"{qualified:<{width}} {kind:<8} {title}")
         return 0
     if args.command in (None, "report"):
-        return _report(json_out=getattr(args, "json", False))
+        return _report(json_out=getattr(args, "json", False), quiet=args.quiet)
     if args.command == "check":
         values = _set_values(args.sets)
         items = find_items(args.item, load_limit=args.load_limit)
-        say = _progress(not args.json and sys.stderr.isatty())
+        say = _progress(not args.quiet)
         reports = [item.run(values, budget=args.budget, progress=say) for item in items]
         return _emit(reports, json_out=args.json)
     if args.command == "simulate":
@@ -246,11 +295,17 @@ def _emit(reports, *, json_out: bool) -> int:
     return max(r.exit_code for r in reports)
 
 
-def _bar(enabled: bool, label: str):
+def _bar(enabled: bool, label: str, say=None):
+    """The fraction of a run done: a bar on a terminal, else a throttled line every 10 % through ``say``."""
     last = [-1]
 
     def update(fraction: float):
         if not enabled:
+            if say is not None:
+                tenth = int(10 * min(max(fraction, 0.0), 1.0))
+                if tenth != last[0]:
+                    last[0] = tenth
+                    say(f"  {label}: {10 * tenth}% of the run")
             return
         k = int(40 * min(max(fraction, 0.0), 1.0))
         if k != last[0]:
@@ -267,11 +322,14 @@ def _simulate(args) -> int:
     from .catalogue.examples import Example
     from .declare.parse import parse_value
     from .declare.symbols import t as t_sym
+    from .simulate.figures import FigureExample, convention_name
 
     if args.t_end is not None and not (args.t_end > 0 and args.t_end < float("inf")):
         raise InputError(f"--t-end: expected a positive finite time, got {args.t_end}")
     if args.plot is not None:
         check_output_path(args.plot)
+    if args.convention is not None:
+        convention_name(args.convention)  # an unknown name is bad input, before anything else
     values = _set_values(args.sets)
     histories = {}
     for h in args.histories:
@@ -282,6 +340,8 @@ def _simulate(args) -> int:
     if not examples:
         raise InputError(f"{args.item}: not a numerical example; `lkverify list` marks examples "
                          f"(e.g. aleksandrov2023.fig6); use `lkverify check` for theorems")
+    examples = [ex.with_options(values, histories=histories, convention=args.convention, distance=args.distance)
+                if isinstance(ex, FigureExample) else ex for ex in examples]
     paths = {}
     if args.plot:
         for ex in examples:
@@ -289,21 +349,128 @@ def _simulate(args) -> int:
             check_output_path(paths[ex.name])
     for ex in examples:  # refuse bad values, histories and step counts before integrating anything
         ex.prepare(values, t_end=args.t_end, histories=histories)
-    tty = not args.json and sys.stderr.isatty()
-    say = _progress(tty)
+        if isinstance(ex, FigureExample) and ex.envelope is not None:
+            ex.chi_used()  # ‖χ‖_τ of the history used: a history it cannot take is refused now
+    tty = not args.json and not args.quiet and sys.stderr.isatty()
+    say = _progress(not args.quiet)
     deadline = Deadline(args.budget)
     reports = []
     for ex in examples:
-        trajectories = ex.simulate(values, t_end=args.t_end, histories=histories, progress=say,
-                                   fraction=lambda label: _bar(tty, label), deadline=deadline)
-        reports.append(ex.run(values, trajectories=trajectories, envelope=args.envelope or ex.envelope is not None))
+        trajectories = ex.simulate(values, t_end=args.t_end, histories=histories, progress=lambda m: say(m, True),
+                                   fraction=lambda label: _bar(tty, label, None if tty else say), deadline=deadline)
+        report = ex.run(values, trajectories=trajectories, envelope=args.envelope or ex.envelope is not None)
+        written = []
         if args.plot:
             path = paths[ex.name]
             ex.plot(trajectories, path, envelope=args.envelope)
-            say(f"figure written to {path}")
-            if not args.json:
-                print(f"figure: {path}")
-    return _emit(reports, json_out=args.json)
+            written.append(str(path))
+            say(f"figure written to {path}", True)
+        reports.append((ex, report, written))
+    if args.json:
+        out = [_simulation_json(ex, report, written, args, histories) for ex, report, written in reports]
+        print(json.dumps(out[0] if len(out) == 1 else out, indent=2, ensure_ascii=False))
+    else:
+        blocks = []
+        for ex, report, written in reports:
+            lines = [report.as_text()] + ["  " + line for line in _setup_lines(ex, args, histories)]
+            lines += [f"figure: {w}" for w in written]
+            blocks.append("\n".join(lines))
+        print("\n\n".join(blocks))
+    return max(r.exit_code for _, r, _ in reports)
+
+
+def _versions() -> dict:
+    """The versions of lkverify and of the numerical libraries a simulation ran on."""
+    from importlib import metadata
+
+    out = {}
+    for name in ("lkverify", "numpy", "scipy", "sympy"):
+        try:
+            out[name] = metadata.version(name)
+        except metadata.PackageNotFoundError:  # pragma: no cover - a source checkout without metadata
+            out[name] = None
+    return out
+
+
+def _history_json(history) -> dict:
+    import numpy as np
+
+    out = {}
+    for k, v in dict(history).items():
+        try:
+            a = np.asarray(v, dtype=float)
+            out[k] = (a.ravel() if a.ndim == 2 and a.shape[1] == 1 else a).tolist()  # a column vector: flat
+        except (TypeError, ValueError):
+            out[k] = str(v)
+    return out
+
+
+def _run_setup(ex, values, histories) -> list:
+    from .simulate.figures import FigureExample, plain, resolved_values, show_value
+
+    runs = []
+    for run in ex.runs:
+        history = dict(run.history)
+        if not isinstance(ex, FigureExample):
+            history.update(histories)
+        entry = {"label": run.label,
+                 "parameters": {k: show_value(v) for k, v in resolved_values(run, values).items()},
+                 "history": _history_json(history),
+                 "history_overridden": sorted(histories),
+                 "history_override": {k: _history_json({k: v})[k] for k, v in histories.items()}}
+        if isinstance(ex, FigureExample):
+            entry["title"] = plain(ex.label_for(run.label) if len(ex.runs) > 1 else ex.title_for())
+        runs.append(entry)
+    return runs
+
+
+def _simulation_json(ex, report, written, args, histories) -> dict:
+    from .simulate.figures import DISTANCES, FigureExample, plain
+
+    out = report.to_json()
+    out["runs"] = _run_setup(ex, _set_values(args.sets), histories)
+    out["history_overridden"] = bool(histories)
+    if isinstance(ex, FigureExample):
+        out["title"] = plain(ex.title_for())
+        out["convention"] = ex.convention
+        out["distance"] = {"name": ex.distance_name, "definition": DISTANCES.get(ex.distance_name)}
+        if ex.envelope is not None:
+            out["chi_tau"] = ex.chi_used()
+    out["t_end"] = args.t_end if args.t_end is not None else ex.t_end
+    out["figures"] = list(written)
+    out["versions"] = _versions()
+    return out
+
+
+def _setup_lines(ex, args, histories) -> list:
+    """The text report's lines about the run setup: history (and its override), convention, distance."""
+    from .simulate.figures import DISTANCES, FigureExample, show_vector
+
+    lines = []
+    if histories:
+        lines.append("history: overridden by --history: " + ", ".join(f"{k} = {show_vector(v)}" if _is_vector(v)
+                                                                      else f"{k} = {v}" for k, v in histories.items())
+                     + "; the other states from the catalogue")
+    else:
+        lines.append("history: the catalogue's (no --history)")
+    if isinstance(ex, FigureExample):
+        if ex.convention is not None:
+            lines.append(f"angle convention of the initial data: {ex.convention}"
+                         + (" (default)" if args.convention is None else ""))
+        lines.append(f"distance: {ex.distance_name} = {DISTANCES.get(ex.distance_name, '')}")
+        if ex.envelope is not None:
+            lines.append(f"‖χ‖_τ of the history used: {ex.chi_used():.4g}")
+    return lines
+
+
+def _is_vector(v) -> bool:
+    import numpy as np
+
+    try:
+        np.asarray(v, dtype=float)
+        return True
+    except (TypeError, ValueError):
+        return False
 
 
 def _constants(args) -> int:
@@ -323,7 +490,7 @@ def _constants(args) -> int:
                 raise InputError(f"--goal: {item.qualified_name} has {'the goals' if several else 'a single goal'} "
                                  f"{', '.join(goals)}; got {args.goal!r}; "
                                  + (f"pass one of them" if several else "drop --goal"))
-    say = _progress(not args.json and sys.stderr.isatty())
+    say = _progress(not args.quiet)
     reports = []
     for item in items:
         report, extra = _constants_within_budget(item, values, args, say)
@@ -360,12 +527,14 @@ def _constants_within_budget(item, values, args, say):
     return Report(item.qualified_name, shown, (result,), f"undecided: the time budget of {args.budget:g} s ran out"), {}
 
 
-def _report(*, json_out: bool) -> int:
-    say = _progress(not json_out and sys.stderr.isatty())
+def _report(*, json_out: bool, quiet: bool = False) -> int:
+    say = _progress(not quiet)
     reports = []
-    for pf in catalogue():
-        for item in pf.items.values():
-            reports.append(item.run({}, progress=say))
+    todo = [item for pf in catalogue() for item in pf.items.values()]
+    for k, item in enumerate(todo):
+        say(f"item {k + 1}/{len(todo)}: {item.qualified_name}", force=True)
+        reports.append(item.run({}, progress=say))
+    say(f"{len(todo)} items done", force=True)
     if json_out:
         print(json.dumps([r.to_json() for r in reports], indent=2, ensure_ascii=False))
     else:

@@ -388,7 +388,12 @@ class ConstantsJob:
 
 
 def _plot_envelopes(extra: dict, path, *, values=None, simulate_fn=None) -> None:
-    """Certified envelopes (log scale), with the cross-check trajectories when given."""
+    """Certified envelopes (log scale), with the cross-check trajectories when given.
+
+    One panel per envelope, titled with the envelope itself: ‖s(t) − r‖ ≤ d1‖χ‖_τ(…) with the
+    certified constant d1 (a constant, not a function of t), in mathtext; a y-axis label on
+    every panel; the legend outside the axes.
+    """
     import matplotlib
 
     matplotlib.use("Agg")
@@ -398,21 +403,43 @@ def _plot_envelopes(extra: dict, path, *, values=None, simulate_fn=None) -> None
     cert = extra.get("certificate")
     if cert is None:
         return
-    fig, axes = plt.subplots(1, len(cert.envelopes), figsize=(6 * len(cert.envelopes), 4), squeeze=False)
+    quantity = extra.get("quantities", {}) if isinstance(extra.get("quantities"), Mapping) else {}
+    fig, axes = plt.subplots(1, len(cert.envelopes), figsize=(7.2 * len(cert.envelopes), 4.4), squeeze=False)
     dt = cert.constants["delta_tilde"]
     tt = np.geomspace(1e-2, 1e6, 400)
     for ax, env in zip(axes[0], cert.envelopes):
+        lhs = quantity.get(env.name) or _ENVELOPE_QUANTITY.get(env.name, f"bounded quantity (${env.name}$)")
         for frac in (1.0, 0.5, 0.1):
-            ax.loglog(tt + 1, env(tt, frac * dt), label=f"‖χ‖_τ = {frac:g} δ̃")
+            ax.loglog(tt + 1, env(tt, frac * dt), label=rf"envelope, $\|\chi\|_\tau = {frac:g}\,\tilde\delta$")
         for label, (t_, q) in extra.get("trajectories", {}).get(env.name, {}).items():
-            ax.loglog(t_ + 1, q, ":", lw=1, label=label)
-        ax.set_title(env.text(), fontsize=9)
-        ax.set_xlabel("1 + t − t0")
+            ax.loglog(t_ + 1, q, ":", lw=1, label=str(label).replace("‖χ‖_τ", r"$\|\chi\|_\tau$")
+                      .replace("δ̃", r"$\tilde\delta$").replace(" δ)", r" $\tilde\delta$)"))
+        ax.set_title(_envelope_tex(env, lhs) + rf"   ($\tilde\delta = {dt:.3g}$)", fontsize=9)
+        ax.set_xlabel(r"$1 + t - t_0$")
+        ax.set_ylabel(lhs)
         ax.grid(alpha=0.3, which="both")
-        ax.legend(fontsize=7)
+        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
+
+
+#: the quantity each envelope bounds (by the envelope's constant name), in mathtext
+_ENVELOPE_QUANTITY = {"d1": r"$\|s(t) - r\|$", "d2": r"$\|\omega(t)\|$"}
+
+
+def _envelope_tex(env, lhs: str) -> str:
+    """``‖s(t) − r‖ ≤ d1‖χ‖_τ(1 + κ‖χ‖_τ(t − t0))^{−1}`` with the certified numbers, in mathtext."""
+    name = env.name.replace("d", "d_", 1) if env.name[:1] == "d" and env.name[1:].isdigit() else env.name
+    chi = r"\|\chi\|_\tau"
+    if env.p == 1:
+        rhs = rf"{name}\,{chi}\,e^{{-{env.kappa / 2:.3g}(t - t_0)}}"
+    elif env.p == 1.5:
+        rhs = rf"{name}\,{chi}\,(1 + {env.kappa:.3g}\,{chi}\,(t - t_0))^{{-1}}"
+    else:
+        rhs = (rf"{name}\,{chi}\,(1 + {env.kappa:.3g}\,{chi}^{{{2 * (env.p - 1):g}}}(t - t_0))"
+               rf"^{{-{1 / (2 * (env.p - 1)):.3g}}}")
+    return lhs[:-1] + r" \leq " + rhs + rf",\ {name} = {env.d:.4g}$"
 
 
 def _fmt_point(p) -> str:

@@ -129,7 +129,33 @@ def _time_to(t, d, level) -> float | None:
 
 
 def _fmt(x) -> str:
-    return "never" if x is None else f"t = {x:.4g}"
+    """A time or, for None, "not by the end" (prefer :func:`reach_text`, which names the level and T)."""
+    return "not by the end of the run" if x is None else f"t = {x:.4g}"
+
+
+def level_text(level: float) -> str:
+    """1e-2 for 0.01 (the levels as the reports write them).
+
+    >>> level_text(0.01), level_text(0.05)
+    ('1e-2', '0.05')
+    """
+    exponent = np.log10(level)
+    if level > 0 and abs(exponent - round(exponent)) < 1e-12:
+        return f"1e{int(round(exponent))}"
+    return f"{level:g}"
+
+
+def reach_text(level: float, t_reach, t_end: float) -> str:
+    """``reaches 1e-2 at t = 12.3`` or ``does not reach 1e-2 by t = 300``.
+
+    >>> reach_text(1e-2, None, 300.0)
+    'does not reach 1e-2 by t = 300'
+    >>> reach_text(1e-3, 12.25, 300.0)
+    'reaches 1e-3 at t = 12.25'
+    """
+    if t_reach is None:
+        return f"does not reach {level_text(level)} by t = {t_end:g}"
+    return f"reaches {level_text(level)} at t = {t_reach:.4g}"
 
 
 def _damping_expr(h):
@@ -189,8 +215,10 @@ class Converges(RunClaim):
             t_tol = _time_to(tr.t, np.asarray(along(example.distance, tr.states, tr.values)), self.tol)
             ok = ok and t_tol is not None and t_tol <= self.by
         return self._res(ok, {"final_distance": s.final_distance, "t_1e2": s.t_1e2, "t_1e3": s.t_1e3},
-                         f"distance {s.final_distance:.3g} at t = {s.t_end:g} (need < {self.tol:g}"
-                         + (f" by t = {self.by:g}" if self.by is not None else "") + f"); 1e-3 reached at {_fmt(s.t_1e3)}")
+                         f"distance {s.final_distance:.3g} at t = {s.t_end:g}"
+                         + (f" ({example.distance_name})" if getattr(example, "distance_name", None) else "")
+                         + f" (need < {self.tol:g}"
+                         + (f" by t = {self.by:g}" if self.by is not None else "") + f"); {reach_text(1e-3, s.t_1e3, s.t_end)}")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -310,7 +338,9 @@ class FasterThan(RunClaim):
         ta, tb = (_time_to(tr.t, np.asarray(along(example.distance, tr.states, tr.values)), self.level)
                   for tr in (trajectories[self.a], trajectories[self.b]))
         ok = ta is not None and (tb is None or ta < tb)
-        return self._res(ok, {"t_a": ta, "t_b": tb}, f"{self.a}: {_fmt(ta)}; {self.b}: {_fmt(tb)}")
+        T = float(trajectories[self.a].t[-1])
+        return self._res(ok, {"t_a": ta, "t_b": tb}, f"{self.a} {reach_text(self.level, ta, T)}; "
+                         f"{self.b} {reach_text(self.level, tb, float(trajectories[self.b].t[-1]))}")
 
 
 @dataclasses.dataclass(frozen=True)

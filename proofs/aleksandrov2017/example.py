@@ -9,20 +9,28 @@ import numpy as np
 import sympy
 
 from lkverify import t
-from lkverify.catalogue.examples import Example
 from lkverify.simulate import BoundedNotAttractive, Converges, DoesNotConverge, FromValues, Run, Series
-from lkverify.simulate.rigidbody import inertial_vectors_from_angles
+from lkverify.simulate.figures import AngleHistory, FigureExample, show_value, show_vector
+from lkverify.simulate.rigidbody import DEFAULT_CONVENTION, inertial_vectors_from_angles
 
 from .equations import PAPER, P, gamma, system
 from .theorem1 import functional
 
-__all__ = ["example", "HISTORY", "remark2_energy", "distance"]
+__all__ = ["example", "HISTORY", "INITIAL", "initial_history", "remark2_energy", "distance", "per_vector_distance"]
 
 _DEFAULTS = P.resolve({})  # the declared defaults: J, a1, a2, r1, r2, r3 of section 6, never retyped
 _R = {name: np.array([float(x) for x in _DEFAULTS[name]]) for name in ("r1", "r2", "r3")}
 
-_S0 = inertial_vectors_from_angles(0.5, 0.5, -0.5)  # columns s1, s2, s3 (r_i = base axes)
-HISTORY = {"omega": [0.3, 0.3, 0.3], "s1": list(_S0[:, 0]), "s2": list(_S0[:, 1]), "s3": list(_S0[:, 2])}
+
+
+def initial_history(angles, omega0, convention=DEFAULT_CONVENTION):
+    """The triad s1, s2, s3 (columns of Rᵀ, r_i = base axes) from the aircraft angles, and ω."""
+    S = inertial_vectors_from_angles(*angles, convention=convention)
+    return {"omega": list(omega0), "s1": list(S[:, 0]), "s2": list(S[:, 1]), "s3": list(S[:, 2])}
+
+
+INITIAL = AngleHistory((0.5, 0.5, -0.5), (0.3, 0.3, 0.3), initial_history)
+HISTORY = INITIAL.history()
 
 
 def _state_arguments():
@@ -63,16 +71,42 @@ def distance(states):
     return np.sqrt(sum(_e(i)(states) ** 2 for i in (1, 2, 3)) + np.sum(states["omega"] ** 2, axis=1))
 
 
+def per_vector_distance(states):
+    """max_i ‖s_i − r_i‖ along a trajectory (each vector against its target)."""
+    return np.max([_e(i)(states) for i in (1, 2, 3)], axis=0)
+
+
+def _describe_history(history, convention, overridden):
+    parts = []
+    if overridden & {"s1", "s2", "s3"}:
+        parts.append(", ".join(f"{k} = {show_vector(history[k])}" for k in ("s1", "s2", "s3")) + " (--history)")
+    else:
+        parts.append(r"($\varphi, \theta, \psi$) = " + show_vector(INITIAL.angles)
+                     + (f" [{convention}]" if convention != DEFAULT_CONVENTION else ""))
+    parts.append(r"$\omega$ = " + show_vector(history["omega"]) + (" (--history)" if "omega" in overridden else ""))
+    return ", ".join(parts)
+
+
+def _caption(values, history, convention, overridden):
+    return "Section 6 of paper 001: decreasing dissipation; " + _describe_history(history, convention, overridden)
+
+
+def _run_caption(label, values, history, convention, overridden):
+    return f"h = {show_value(values['h'])}"
+
+
 CONVERGING, BOUNDED = "h = (1+t)^(−7/8)", "h = (1+t)^(−8/7)"
-example = Example(
+example = FigureExample(
     "example",
+    caption=_caption, run_caption=_run_caption, initial=INITIAL,
+    distances={"combined": distance, "per-vector": per_vector_distance},
+    vectors=[(f"‖s{i} − r{i}‖", _e(i)) for i in (1, 2, 3)], targets=[0.0, 0.0, 0.0], ylabel_tex=r"$\omega$ components",
     title="Section 6: decreasing dissipation h = (1+t)^(−β)",
     runs=[Run(CONVERGING, system, {"h": "(1+t)**(-7/8)"}, HISTORY),
           Run(BOUNDED, system, {"h": "(1+t)**(-8/7)"}, HISTORY)],
     t_end=2400,
     series=[Series("ω_x", lambda st: st["omega"][:, 0]), Series("ω_y", lambda st: st["omega"][:, 1]),
             Series("ω_z", lambda st: st["omega"][:, 2])],
-    distance=distance,
     claims=[Converges(CONVERGING, tol=1e-3, by=800),
             BoundedNotAttractive(BOUNDED, FromValues(remark2_energy), "(1+t)**(-8/7)", bound=3.0),
             DoesNotConverge(BOUNDED, floor=1e-2)],

@@ -135,22 +135,43 @@ class Lemma1Constants:
         return Report(item_name, dict(shown), results, verdict), {"results": results}
 
     def plot(self, extra, path, *, values=None):
-        """Write the sampled largest δ(ε) and the certified points to ``path``."""
+        """Write δ(ε): the sampled largest δ, the closed form 2√(1−ε), the certified points, and their gaps.
+
+        Top: the curves and points.  Bottom: the relative gaps (sampled − certified)/sampled at
+        the certified ε and (sampled − 2√(1−ε))/(2√(1−ε)) along the grid, on a log scale.
+        """
         from matplotlib.figure import Figure  # matplotlib only for figures: not at catalogue load time
 
         eps_grid = np.linspace(0.05, 0.99, 40)
-        est = [2 * _lemma1_sigma_estimate(e, n=61) for e in eps_grid]
-        fig = Figure(figsize=(6, 4))
-        ax = fig.subplots()
-        ax.plot(eps_grid, est, label="largest δ (sampled estimate)")
-        pts = [(r.value["eps"], r.value["certified"]) for r in extra["results"] if r.value]
+        est = np.array([2 * _lemma1_sigma_estimate(e, n=61) for e in eps_grid])
+        closed = 2 * np.sqrt(1 - eps_grid)
+        fig = Figure(figsize=(7.5, 6.4))
+        ax, gap = fig.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": [3, 2]})
+        ax.plot(eps_grid, est, lw=1.6, label="largest δ (sampled estimate)")
+        ax.plot(eps_grid, closed, "k--", lw=1, label=r"closed form $2\sqrt{1-\varepsilon}$")
+        pts = [(r.value["eps"], r.value["certified"], r.value["estimate_largest"]) for r in extra["results"]
+               if r.value]
         if pts:
-            ax.plot(*zip(*pts), "o", label="certified δ(ε)")
-        ax.set_xlabel("ε")
-        ax.set_ylabel("δ(ε)")
-        ax.set_title("Lemma 1 of paper 001 (a1 = a2 = 1)")
+            e_c, d_c, d_s = (np.array(x, dtype=float) for x in zip(*pts))
+            ax.plot(e_c, d_c, "o", label=r"certified $\delta(\varepsilon)$")
+            rel = (d_s - d_c) / d_s
+            gap.semilogy(e_c, np.maximum(rel, 1e-16), "o-", label="(sampled − certified) / sampled")
+            for x, y in zip(e_c, rel):
+                gap.annotate(f"{100 * y:.2g} %", (x, max(y, 1e-16)), textcoords="offset points", xytext=(4, 6),
+                             fontsize=7)
+        rel_closed = np.abs(est - closed) / closed
+        gap.semilogy(eps_grid, np.maximum(rel_closed, 1e-16), ".", ms=4,
+                     label=r"|sampled − $2\sqrt{1-\varepsilon}$| / $2\sqrt{1-\varepsilon}$"
+                           f" (max {np.max(rel_closed):.1e}; 0 drawn at 1e-16)")
+        gap.set_ylim(1e-17, 1.0)
+        ax.set_ylabel(r"$\delta(\varepsilon)$")
+        ax.set_title(r"Lemma 1 of paper 001 ($a_1 = a_2 = 1$): $\delta(\varepsilon)$", fontsize=10)
         ax.grid(alpha=0.3)
-        ax.legend()
+        ax.legend(fontsize=8, loc="best")
+        gap.set_xlabel(r"$\varepsilon$")
+        gap.set_ylabel("relative gap (log)")
+        gap.grid(alpha=0.3, which="both")
+        gap.legend(fontsize=7, loc="center left")
         fig.tight_layout()
         fig.savefig(path, dpi=120)
 

@@ -7,26 +7,30 @@ default of the parameter r, never retyped.
 """
 
 import numpy as np
+import sympy
 
-from lkverify.catalogue.examples import Example
 from lkverify.simulate import Run, Series
-from lkverify.simulate.rigidbody import inertial_vectors_from_angles
+from lkverify.simulate.figures import AngleHistory, FigureExample, show_value, show_vector
+from lkverify.simulate.rigidbody import DEFAULT_CONVENTION, inertial_vectors_from_angles
 
 from .equations import PAPER, P, system
 
 __all__ = ["R_TARGET", "initial_history", "SECTION6", "FIG7_HISTORY", "DIRECTION_COSINES", "s_minus_r", "distance",
-           "gains", "figure", "FIG1", "FIG4", "FIG6", "PRINTED_15"]
+           "gains", "figure", "caption", "SECTION6_ANGLES", "FIG7_ANGLES", "INITIAL", "FIG1", "FIG4", "FIG6", "PRINTED_15"]
 
 R_TARGET = np.array([float(x) for x in P["r"].default])  # r = (1,1,1)/√3 of section 6
 
 
-def initial_history(angles, omega0):
-    """Constant history: s from the aircraft angles (default convention of lkverify.simulate.rigidbody), ω."""
-    return {"s": list(inertial_vectors_from_angles(*angles, R_TARGET)), "omega": list(omega0)}
+def initial_history(angles, omega0, convention=DEFAULT_CONVENTION):
+    """Constant history: s from the aircraft angles (a convention of lkverify.simulate.rigidbody), ω."""
+    return {"s": list(inertial_vectors_from_angles(*angles, R_TARGET, convention=convention)),
+            "omega": list(omega0)}
 
 
-SECTION6 = initial_history((0.5, 0.6, -0.8), (1.0, 1.0, 1.0))
-FIG7_HISTORY = initial_history((0.8, 0.8, -0.8), (0.1, 0.1, 0.1))
+SECTION6_ANGLES = AngleHistory((0.5, 0.6, -0.8), (1.0, 1.0, 1.0), initial_history)
+FIG7_ANGLES = AngleHistory((0.8, 0.8, -0.8), (0.1, 0.1, 0.1), initial_history)
+SECTION6 = SECTION6_ANGLES.history()
+FIG7_HISTORY = FIG7_ANGLES.history()
 
 
 def s_minus_r(states):
@@ -47,16 +51,45 @@ def gains(h, a, b, tau, mu):
     return {"F": f"diag({h},{h},{h})", "a": a, "b": b, "tau": tau, "mu": mu}
 
 
-def figure(name, title, values, claims, *, t_end, history=SECTION6, envelope=None, samples=4001):
-    """One figure of section 6: a single run of (10), (12), the direction cosines plotted up to t = 100."""
-    return Example(name, title=title, runs=[Run(title, system, values, history)], t_end=t_end,
-                   series=DIRECTION_COSINES, distance=distance, claims=claims, ylabel="direction cosines",
-                   envelope=envelope, samples=samples, plot_until=100, paper=PAPER)
+def caption(number):
+    """``caption(values, history, convention, overridden)`` of Fig. ``number``: the gains and data used."""
+
+    def text(values, history, convention, overridden):
+        F = values["F"]
+        h = (f"h = {show_value(F[0, 0])}" if F == F[0, 0] * sympy.eye(F.shape[0]) else f"F = {show_value(F)}")
+        gains = (f"a = {show_value(values['a'])}, {h}, $\\tau$ = {show_value(values['tau'])}, "
+                 f"b = {show_value(values['b'])}, $\\mu$ = {show_value(values['mu'])}")
+        angles = INITIAL[number]
+        if "s" in overridden:
+            s_text = "s = " + show_vector(history["s"]) + " (--history)"
+        else:
+            s_text = ("($\\varphi, \\theta, \\psi$) = " + show_vector(angles.angles)
+                      + (f" [{convention}]" if convention != DEFAULT_CONVENTION else ""))
+        w_text = "$\\omega$ = " + show_vector(history["omega"]) + (" (--history)" if "omega" in overridden else "")
+        return f"Fig. {number}: {gains}; {s_text}, {w_text}"
+
+    return text
+
+
+def figure(name, title, values, claims, *, t_end, history=SECTION6, envelope=None, samples=4001, envelope_caption=""):
+    """One figure of section 6: a single run of (10), (12), the direction cosines plotted up to t = 100.
+
+    The title shown on the figure is computed from the values and history used (:func:`caption`);
+    ``title`` is the catalogue's name of the run, which the claims refer to.
+    """
+    number = int(name[3:])
+    return FigureExample(name, title=title, runs=[Run(title, system, values, history)], t_end=t_end,
+                         series=DIRECTION_COSINES, distances={"combined": distance, "per-vector": s_minus_r},
+                         claims=claims, ylabel="direction cosines", envelope=envelope, samples=samples,
+                         plot_until=100, paper=PAPER, caption=caption(number), initial=INITIAL[number],
+                         vectors=[("‖s − r‖", s_minus_r)], targets=list(R_TARGET), envelope_caption=envelope_caption)
 
 
 FIG1 = gains("0.7", a="2", b="2", tau="0.9", mu="1")
 FIG4 = gains("0.2", a="0.6", b="-0.6", tau="0.9", mu="1")
 FIG6 = gains("1", a="0", b="-1", tau="1", mu="2")
+INITIAL = {1: SECTION6_ANGLES, 2: SECTION6_ANGLES, 3: SECTION6_ANGLES, 4: SECTION6_ANGLES, 5: SECTION6_ANGLES,
+           6: SECTION6_ANGLES, 7: FIG7_ANGLES}
 
 # Estimate (15) as printed: ‖s(t) − r‖ ≤ 9.21‖χ‖_τ (1 + 0.23‖χ‖_τ (t − t0))^{−1} for ‖χ‖_τ < 0.28.
 PRINTED_15 = {"d1": 9.21, "d2": 7.44, "d3": 0.23, "delta_tilde": 0.28}

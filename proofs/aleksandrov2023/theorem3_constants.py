@@ -123,7 +123,7 @@ def _cross_check(v, cert, *, samples=8, t_end=300.0, seed=11):
         wn = np.linalg.norm(tr.states["omega"], axis=1)
         if label in ("sample 1", "sample 2"):
             c = float(chi_norm(np.asarray(hist["s"]) - rv, np.asarray(hist["omega"])))
-            name = f"{label} (‖χ‖_τ = {c / dt:.2f} δ̃)"
+            name = f"{label} ($\\|\\chi\\|_\\tau = {c / dt:.2f}\\,\\tilde\\delta$)"
             curves["d1"][name] = (tr.t, e)
             curves["d2"][name] = (tr.t, wn)
         chi = float(chi_norm(np.asarray(hist["s"]) - rv, np.asarray(hist["omega"])))
