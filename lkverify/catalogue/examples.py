@@ -18,7 +18,7 @@ from ..options import Budget, Deadline
 from ..report.results import Report, Result
 from ..simulate.control import StepControl
 from ..simulate.envelope import EnvelopeCheck, cross_check
-from ..simulate.experiments import EnvelopeSpec, Run, RunSummary, Series, _fmt, _time_to, along
+from ..simulate.experiments import EnvelopeSpec, Run, RunSummary, Series, _time_to, along, reach_text
 # transitional: proof modules written before the move import the run claims from here; new code
 # imports them from lkverify.simulate (lkverify.simulate.experiments)
 from ..simulate.experiments import (BoundedNotAttractive, Converges, DoesNotConverge, FasterThan,  # noqa: F401
@@ -175,12 +175,15 @@ class Example(Item):
                 detail = f"{s.outcome}{when}: {tr.message}"
             else:
                 status = Status.SIMULATED
+                which = getattr(self, "distance_name", None)
                 detail = (f"{s.outcome}; {'converged' if s.converged else 'not converged'}: distance "
-                          f"{s.final_distance:.3g} at t = {s.t_end:g}; reaches 1e-2 at {_fmt(s.t_1e2)}, "
-                          f"1e-3 at {_fmt(s.t_1e3)}")
+                          f"{s.final_distance:.3g} at t = {s.t_end:g}{f' ({which})' if which else ''}; "
+                          f"{reach_text(1e-2, s.t_1e2, s.t_end)}, {reach_text(1e-3, s.t_1e3, s.t_end)}")
             value = s.to_json()
             value["t_fail"] = tr.t_fail
             value["message"] = tr.message
+            if getattr(self, "distance_name", None):
+                value["distance"] = self.distance_name
             results.append(Result("simulation", f"run {label}", status, value, detail))
         return results, cut
 

@@ -29,11 +29,8 @@ import numpy as np
 
 from ..catalogue.examples import Example
 from ..errors import InputError
-from ..report.results import Report, Result
-from ..status import Status
 from .experiments import _time_to, along, level_text, reach_text
 from .rigidbody import CONVENTIONS, DEFAULT_CONVENTION, _ALIASES, _canonical_convention
-from .solver import Outcome
 
 __all__ = ["AngleHistory", "DISTANCES", "FigureExample", "LEVELS", "plain", "reach_text", "show_value", "show_vector",
            "resolved_values"]
@@ -250,32 +247,6 @@ class FigureExample(Example):
         per_run = [{k: show_value(v) for k, v in resolved_values(r, values).items()} for r in self.runs]
         common = {k: v for k, v in per_run[0].items() if all(p.get(k) == v for p in per_run[1:])}
         return dataclasses.replace(report, parameters=common) if dataclasses.is_dataclass(report) else report
-
-    def _run_results(self, trajectories):
-        results = []
-        cut = {}
-        for label, tr in trajectories.items():
-            s = self.summary(label, tr)
-            ok = s.outcome is Outcome.SUCCESS
-            if not s.outcome.reached_end:
-                cut[label] = tr
-                status = Status.UNDECIDED
-                detail = f"undecided ({s.outcome}): {tr.message}; distance {s.final_distance:.3g} at t = {s.t_end:g}"
-            elif not ok:
-                status = Status.FAILED
-                when = f" at t = {tr.t_fail:.6g}" if tr.t_fail is not None else ""
-                detail = f"{s.outcome}{when}: {tr.message}"
-            else:
-                status = Status.SIMULATED
-                detail = (f"{s.outcome}; {'converged' if s.converged else 'not converged'}: distance "
-                          f"{s.final_distance:.3g} at t = {s.t_end:g} ({self.distance_name}); "
-                          f"{reach_text(1e-2, s.t_1e2, s.t_end)}, {reach_text(1e-3, s.t_1e3, s.t_end)}")
-            value = s.to_json()
-            value["t_fail"] = tr.t_fail
-            value["message"] = tr.message
-            value["distance"] = self.distance_name
-            results.append(Result("simulation", f"run {label}", status, value, detail))
-        return results, cut
 
     # -- figures ------------------------------------------------------------------------------
     def plot(self, trajectories, path, *, envelope: bool = False) -> None:
