@@ -208,14 +208,12 @@ class Example(Item):
     # -- figures ---------------------------------------------------------------------------
     def plot(self, trajectories: Mapping[str, Trajectory], path, *, envelope: bool = False) -> None:
         """Write a PNG in the paper's style: each plotted series against t, one panel per run."""
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+        from matplotlib.figure import Figure  # no pyplot: the backend (and a notebook's inline one) is left alone
 
         show_env = envelope and self.envelope is not None
         n = len(trajectories) + (1 if show_env else 0)
-        fig, axes = plt.subplots(n, 1, figsize=(7.5, 3.2 * n), squeeze=False)
+        fig = Figure(figsize=(7.5, 3.2 * n))
+        axes = fig.subplots(n, 1, squeeze=False)
         for ax, (label, tr) in zip(axes[:, 0], trajectories.items()):
             k = len(tr.t) if self.plot_until is None else int(np.searchsorted(tr.t, self.plot_until, side="right"))
             for s in self.series:
@@ -242,4 +240,3 @@ class Example(Item):
             ax.legend(fontsize=8)
         fig.tight_layout()
         fig.savefig(path, dpi=120)
-        plt.close(fig)

@@ -147,7 +147,7 @@ def unit_vector_near(r, *, rho_max=None, distance_max=None, rho=None, psi=None) 
         raise InputError(f"r must be a numeric 3-vector, got {r}")
     r = r.reshape(3, 1)
     if not prove_zero(r.dot(r) - 1):
-        raise InputError(f"r must be a unit vector (checked exactly), got ‖r‖² = {sympy.nsimplify(r.dot(r))}")
+        raise InputError(f"r must be a unit vector (checked exactly), got ‖r‖² = {sympy.simplify(r.dot(r))}")
     if (rho_max is None) == (distance_max is None):
         raise InputError("give exactly one of rho_max (angle from r) and distance_max (‖s − r‖ ≤ d)")
     if distance_max is not None:

@@ -394,17 +394,15 @@ def _plot_envelopes(extra: dict, path, *, values=None, simulate_fn=None) -> None
     certified constant d1 (a constant, not a function of t), in mathtext; a y-axis label on
     every panel; the legend outside the axes.
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
     import numpy as np
+    from matplotlib.figure import Figure  # no pyplot: the backend (and a notebook's inline one) is left alone
 
     cert = extra.get("certificate")
     if cert is None:
         return
     quantity = extra.get("quantities", {}) if isinstance(extra.get("quantities"), Mapping) else {}
-    fig, axes = plt.subplots(1, len(cert.envelopes), figsize=(7.2 * len(cert.envelopes), 4.4), squeeze=False)
+    fig = Figure(figsize=(7.2 * len(cert.envelopes), 4.4))
+    axes = fig.subplots(1, len(cert.envelopes), squeeze=False)
     dt = cert.constants["delta_tilde"]
     tt = np.geomspace(1e-2, 1e6, 400)
     for ax, env in zip(axes[0], cert.envelopes):
@@ -421,7 +419,6 @@ def _plot_envelopes(extra: dict, path, *, values=None, simulate_fn=None) -> None
         ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
-    plt.close(fig)
 
 
 #: the quantity each envelope bounds (by the envelope's constant name), in mathtext

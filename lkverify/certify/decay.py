@@ -130,7 +130,7 @@ class DecayModel:
         """The model with parameter values substituted (exact rationals recommended)."""
         sub = dict(values)
         return dataclasses.replace(
-            self, region={v: sympy.nsimplify(sympy.sympify(h).xreplace(sub)) for v, h in self.region.items()},
+            self, region={v: _exact_floats(sympy.sympify(h).xreplace(sub)) for v, h in self.region.items()},
             lower=sympy.expand(self.lower.xreplace(sub)), upper=sympy.expand(self.upper.xreplace(sub)),
             vdot=sympy.expand(self.vdot.xreplace(sub)),
             history_variables={v: sympy.sympify(k).xreplace(sub) for v, k in self.history_variables.items()})
@@ -188,6 +188,12 @@ class DecayCertificate:
             out.append(Result("constant", key, self.status, {"value": value, "paper": pv, "equal_or_better": better},
                               detail.strip()))
         return out
+
+
+def _exact_floats(expr):
+    """``expr`` with every Float at its exact binary value (never a guessed closed form)."""
+    expr = sympy.sympify(expr)
+    return expr.xreplace({f: sympy.Rational(f) for f in expr.atoms(sympy.Float)})
 
 
 def _q(x) -> sympy.Rational:
@@ -363,7 +369,7 @@ def _initial_constant(model: DecayModel, dt, each: float, say):
     for hv, kappa in model.history_variables.items():
         y = sympy.Symbol(f"y_{hv}", nonnegative=True)
         sub[hv] = dt * y
-        box[y] = (0, sympy.nsimplify(kappa))
+        box[y] = (0, _exact_floats(kappa))
     say(f"{model.name}: C0 = sup U/‖χ‖² at ‖χ‖ = δ̃")
     return bounds.sup_bound(sympy.expand(model.upper.xreplace(sub) / dt ** 2), box,
                             accuracy=Accuracy(rel_gap=C0_REL_GAP), budget=Budget(seconds=each))

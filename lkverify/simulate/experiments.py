@@ -80,13 +80,18 @@ class Series:
 
 @dataclasses.dataclass(frozen=True)
 class EnvelopeSpec:
-    """A predicted envelope: ``bound(t, chi)`` for the quantity ``quantity(states)``, with ‖χ‖_τ = ``chi``."""
+    """A predicted envelope: ``bound(t, chi)`` for the quantity ``quantity(states)``, with ‖χ‖_τ = ``chi``.
+
+    ``valid_below``: the envelope is claimed only for ‖χ‖_τ below it (the estimate's region, e.g. 0.28
+    for (15) as printed); a history outside it is said so in the figure.
+    """
 
     label: str
     quantity: Series
     bound: Callable
     chi: Callable  # chi(run) -> float, the history norm the envelope is stated in
     run: str
+    valid_below: float | None = None
 
 
 @dataclasses.dataclass(frozen=True)
@@ -178,7 +183,7 @@ def _tail_integral(h, T: float) -> float:
 
     from ..declare.symbols import t
 
-    val = sympy.integrate(_damping_expr(h), (t, sympy.nsimplify(T), sympy.oo))
+    val = sympy.integrate(_damping_expr(h), (t, sympy.Rational(T) if isinstance(T, float) else sympy.sympify(T), sympy.oo))
     return float("inf") if val in (sympy.oo, sympy.zoo) or not val.is_finite else float(val)
 
 

@@ -251,14 +251,12 @@ class FigureExample(Example):
     # -- figures ------------------------------------------------------------------------------
     def plot(self, trajectories, path, *, envelope: bool = False) -> None:
         """Write the PNG: per run the plotted series (paper window) and the log distance (whole run)."""
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+        from matplotlib.figure import Figure  # no pyplot: the backend (and a notebook's inline one) is left alone
 
         show_env = envelope and self.envelope is not None
         n = 2 * len(trajectories) + (1 if show_env else 0)
-        fig, axes = plt.subplots(n, 1, figsize=(9.0, 2.9 * n), squeeze=False, layout="constrained")
+        fig = Figure(figsize=(9.0, 2.9 * n), layout="constrained")
+        axes = fig.subplots(n, 1, squeeze=False)
         axes = axes[:, 0]
         fig.suptitle(self.title_for(), fontsize=10)
         for k, (label, tr) in enumerate(trajectories.items()):
@@ -289,7 +287,6 @@ class FigureExample(Example):
         if show_env:
             self._envelope_panel(axes[-1], trajectories)
         fig.savefig(path, dpi=110)
-        plt.close(fig)
 
     def _distance_panel(self, ax, tr, stop, run_label) -> None:
         d = np.maximum(np.asarray(along(self.distance, tr.states, tr.values), dtype=float), 1e-300)
@@ -328,7 +325,11 @@ class FigureExample(Example):
         q = np.asarray(along(e.quantity.fn, tr.states, tr.values), dtype=float)
         ax.semilogy(tr.t, np.maximum(q, 1e-300), lw=1.2, label=_tex(e.quantity.label) + " (trajectory)")
         ax.semilogy(tr.t, np.asarray(e.bound(tr.t, chi), dtype=float), "--", lw=1.2, label="envelope")
-        ax.set_title((self.envelope_caption or _tex(e.label)) + rf",  $\|\chi\|_\tau = {chi:.4g}$", fontsize=9)
+        outside = e.valid_below is not None and not chi < e.valid_below
+        note = (rf"$\geq {e.valid_below:g}$" + "\noutside the estimate's region: the envelope is not claimed for "
+                "this history" if outside else "")
+        ax.set_title((self.envelope_caption or _tex(e.label)) + rf",  $\|\chi\|_\tau = {chi:.4g}$ " + note,
+                     fontsize=9, color="firebrick" if outside else "black")
         ax.set_xlabel("$t$")
         ax.set_ylabel(_tex(e.quantity.label))
         ax.grid(alpha=0.3, which="both")

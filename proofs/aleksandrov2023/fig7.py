@@ -33,5 +33,6 @@ ENVELOPE_CAPTION = (rf"(15) as printed: $\|s(t) - r\| \leq {PRINTED_15['d1']:g}\
 
 fig7 = figure("fig7", TITLE, FIG6, [Converges(TITLE)], t_end=1500, history=FIG7_HISTORY,
               envelope=EnvelopeSpec("(15) as printed: ‖s − r‖ ≤ 9.21‖χ‖_τ/(1 + 0.23‖χ‖_τ t)",
-                                    Series("‖s − r‖", s_minus_r), printed_15_envelope, chi_of_history, TITLE),
+                                    Series("‖s − r‖", s_minus_r), printed_15_envelope, chi_of_history, TITLE,
+                                    valid_below=PRINTED_15["delta_tilde"]),
               envelope_caption=ENVELOPE_CAPTION)

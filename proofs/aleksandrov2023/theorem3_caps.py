@@ -42,7 +42,7 @@ def caps(values):
     e2 = r.cross(e1)
     B = sympy.Matrix.hstack(e1, e2)
     Finv = Fm.inv()
-    M = (B.T * Finv * Th * Finv.T * B).applyfunc(sympy.nsimplify)
+    M = (B.T * Finv * Th * Finv.T * B).applyfunc(sympy.radsimp)
     theta_star = sympy.simplify(max(M.eigenvals(multiple=True), key=lambda x: float(x)))
     theta_max = max(Th.eigenvals(multiple=True), key=lambda x: float(x))
     d1_min = sympy.simplify(2 * sympy.sqrt(theta_star * theta_max))
@@ -61,7 +61,7 @@ def _check(values):
                    {"value": float(d1_min), "exact": str(d1_min), "theta_star": str(theta_star),
                     "theta_max": str(theta_max), "paper": PRINTED_15["d1"]},
                    f"C0 ≥ λθ_max/2, l_e ≤ ½ − θ*/(2λ) (exact evaluations of V); min over λ of λ²θ_max/(λ − θ*) is "
-                   f"attained at λ = 2θ* = {sympy.nsimplify(2 * theta_star)}: d1 ≥ {d1_min} ≈ {float(d1_min):.4g}")]
+                   f"attained at λ = 2θ* = {sympy.radsimp(2 * theta_star)}: d1 ≥ {d1_min} ≈ {float(d1_min):.4g}")]
     dt_ok = float(dt_sup) < PRINTED_15["delta_tilde"]
     d1_ok = float(d1_min) > PRINTED_15["d1"]
     rows.append(Result("constant", "printed d1 = 9.21 against the cap", Status.FAILED if d1_ok else Status.EXACT,

@@ -54,7 +54,6 @@ def _eig(which, M):
     """The extreme eigenvalue of a symmetric matrix parameter at the checked values (exact)."""
     def value(ctx):
         ev = sympy.Matrix(ctx.at(M)).eigenvals(multiple=True)
-        ev = [sympy.nsimplify(x) if not x.is_Rational else x for x in ev]
         return min(ev) if which == "min" else max(ev)
     return value
 

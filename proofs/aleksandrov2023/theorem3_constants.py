@@ -50,12 +50,17 @@ def theorem3_model(v, c, *, budget=None, progress=None):
     P = system.parameters
 
     def build(free):
-        chosen = {**v, **{k: sympy.nsimplify(x) for k, x in free.items()}}
+        chosen = {**v, **{k: _exact(x) for k, x in free.items()}}
         sub = P.substitution(chosen)
         at = {role: (step, _At(res, sub)) for role, (step, res) in checked.items()}
         return DECAY.model(at, chosen)
 
     return build, rows
+
+
+def _exact(x):
+    """A searched value as an exact number (a float at its exact binary value), or the search's symbol."""
+    return x if isinstance(x, sympy.Basic) else sympy.Rational(x)
 
 
 class _At:

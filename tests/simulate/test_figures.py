@@ -83,3 +83,10 @@ def test_figure_title_and_labels(tmp_path, monkeypatch):
     assert not any("_τ" in t or "d1(t)" in t for t in texts)
     assert r"\|\chi\|_\tau" in axes[2].get_title()
     assert (tmp_path / "f.png").stat().st_size > 0
+
+
+def test_fig7_envelope_states_its_region():
+    from lkverify.proofs.aleksandrov2023.fig7 import fig7
+    from lkverify.proofs.aleksandrov2023.section6 import PRINTED_15
+
+    assert fig7.envelope.valid_below == PRINTED_15["delta_tilde"] == 0.28

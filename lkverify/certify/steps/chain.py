@@ -539,7 +539,7 @@ def _positive_rate_point(model, grid: int = 41):
     if best is None or best[0] < 0:
         return None
     at = {str(v): sympy.Rational(x).limit_denominator(10**6) for v, x in zip(vs, best[1])}
-    at = {k: min(v, sympy.nsimplify(model.region[sympy.Symbol(k, nonnegative=True)])) for k, v in at.items()}
+    at = {k: min(v, sympy.sympify(model.region[sympy.Symbol(k, nonnegative=True)])) for k, v in at.items()}
     value = model.vdot.xreplace({v: at[str(v)] for v in vs})
     sign = sign_of(value)
     if sign.sign is None or sign.sign < 0 or all(x == 0 for x in at.values()):

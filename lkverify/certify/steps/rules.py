@@ -413,7 +413,7 @@ def _window_factor(g, lo, hi, measure: Measure, k, holder, ctx: Context, *, lowe
     p, q = (ctx.at(x) for x in holder)
     conds.append(_cond(f"Hölder exponents p = {p}, q = {q} are conjugate (1/p + 1/q = 1)",
                        bool(sympy.simplify(1 / p + 1 / q - 1) == 0) and bool(p > 1) and bool(q > 1),
-                       f"1/p + 1/q = {sympy.nsimplify(1 / p + 1 / q)}"))
+                       f"1/p + 1/q = {sympy.simplify(1 / p + 1 / q)}"))
     if measure.kind != "window_norm":
         return None, conds + [_cond("Hölder needs a window norm (∫‖v‖^p)^{1/p}", False, f"{measure.name} is a "
                                     f"{measure.kind}")]

@@ -662,7 +662,7 @@ def _time_argument(time):
         if not isinstance(v, sympy.Expr) or v.free_symbols or not v.is_number or v.is_real is not True \
                 or v.has(sympy.oo, -sympy.oo, sympy.zoo, sympy.nan):
             raise InputError(f"time: expected a finite real number, got {x!r}")
-        return sympy.nsimplify(v) if v.atoms(sympy.Float) else v
+        return v.xreplace({f: sympy.Rational(f) for f in v.atoms(sympy.Float)})  # a Float at its exact binary value
 
     if time is None:
         return None, None
