@@ -265,7 +265,10 @@ class TermwiseBound:
         """Check every term bound and the sum at resolved parameter values."""
         start = _time.perf_counter()
         measures = {m.name: m for m in self.measures}
-        ctx = Context(self.system, values, measures, self.region, budget=budget)
+        from ...options import Budget
+
+        deadline = Budget.of(budget).deadline() if budget is not None else None
+        ctx = Context(self.system, values, measures, self.region, budget=deadline)
         ctx.constants = self.named_constants(values)
         terms = self.lhs_terms()
         by_label = {}
@@ -395,7 +398,7 @@ class TermwiseBound:
         try:
             return search_witness(lhs, rhs, system=self.system, values=ctx.values, measures=list(self.measures),
                                   region=self.region, exists=tuple(exists), nonnegative=nonneg,
-                                  budget=self.witness_seconds,
+                                  budget=ctx.seconds_left(self.witness_seconds),
                                   **({} if self.witness_time is None else {"time": self.witness_time}))
         except InputError:
             return None
@@ -488,6 +491,14 @@ class Decay:
             return [], Status.UNDECIDED, str(exc)
         if cert is None:
             point = _positive_rate_point(model)
+            loose = [name for _, (_, res) in steps.items() for tr in res.terms for a in tr.applications
+                     for name, _, info in a.constants if not (info or {}).get("accurate", True)]
+            if point is not None and loose:
+                at, value = point
+                where = ", ".join(f"{k} = {v}" for k, v in at.items())
+                return [], Status.UNDECIDED, (f"W = {float(value):.4g} ≥ 0 at the point {where} of the region's box, "
+                                              f"but the template constants {', '.join(loose)} were not tightened to "
+                                              f"their accuracy target in the budget: raise --budget")
             if point is not None:
                 at, value = point
                 where = ", ".join(f"{k} = {v}" for k, v in at.items())

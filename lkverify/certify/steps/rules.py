@@ -84,6 +84,15 @@ class Context:
         self.sub = self.system.parameters.substitution(self.values)
         self.certified = {}  # constants certified inside norm trees: name → (value, info)
 
+    def seconds_left(self, default: float = 30.0) -> float:
+        """Seconds for one certification: what is left of the step's deadline (``default`` without one)."""
+        from ...options import Deadline
+
+        if isinstance(self.budget, Deadline):
+            left = self.budget.remaining
+            return default if left is None else max(min(left, default), 1e-3)
+        return default if self.budget is None else max(min(float(self.budget), default), 1e-3)
+
     def __getitem__(self, name):
         """The resolved value of a parameter (so a callable of the values also works with the context)."""
         return self.values[name]
@@ -549,7 +558,7 @@ def _resolve_integrals(vec, pointwise, measures, k, weight, constant, ctx: Conte
         return None, conds + [_cond(f"the pointwise bound is Σ‖v_i(ξ)‖^{k}", False, f"got {B}; name a constant= to "
                                     f"certify a homogeneous bound")]
     else:
-        kappa, hconds, info = _homogeneous_sup(B, T, ps)
+        kappa, hconds, info = _homogeneous_sup(B, T, ps, ctx.seconds_left())
         conds += hconds
         if kappa is None:
             return None, conds
@@ -783,7 +792,7 @@ class Young(Rule):
         return self.rewrite(ctx.at(term), ctx)
 
 
-def _homogeneous_sup(g, T, xs):
+def _homogeneous_sup(g, T, xs, seconds: float = 30.0):
     """(κ or None, conditions, info): κ ≥ sup g/T over x ≥ 0, x ≠ 0 for g, T homogeneous of one degree.
 
     Homogeneity is checked exactly (g(ρx)/T(ρx) = g(x)/T(x)); the supremum is then the one on
@@ -806,7 +815,7 @@ def _homogeneous_sup(g, T, xs):
         others = {pos[y]: sympy.Symbol(f"{y.name}_f", nonnegative=True) for y in xs if y != x}
         on_face = ratio.xreplace({pos[x]: sympy.S.One, **others})
         box = {v: (0, 1) for v in others.values()}
-        r = sup_bound(on_face, box, accuracy=TEMPLATE_ACCURACY, budget=Budget(seconds=30.0, boxes=TEMPLATE_BOXES),
+        r = sup_bound(on_face, box, accuracy=TEMPLATE_ACCURACY, budget=Budget(seconds=seconds, boxes=TEMPLATE_BOXES),
                       enclosure=TEMPLATE_ENCLOSURE)
         if r.certified is None or not r.certified < float("inf"):
             conds.append(_cond("κ certified", None, "no finite certified bound on a face", certified=True))
@@ -815,7 +824,8 @@ def _homogeneous_sup(g, T, xs):
             best = r
     conds.append(_cond(f"κ = sup g/T = {best.certified:.6g} certified on the faces max x_k = 1 (estimate "
                        f"{best.estimate:.6g})", True, certified=True))
-    info = {"estimate": best.estimate, "certified": best.certified, "gap": best.gap, "boxes": best.boxes}
+    info = {"estimate": best.estimate, "certified": best.certified, "gap": best.gap, "boxes": best.boxes,
+            "accurate": best.status is Status.CERTIFIED}
     return sympy.Rational(best.certified), conds, info
 
 
@@ -848,7 +858,7 @@ class Homogeneous(Rule):
                        f"g = {g} involves other measures")]
         if not conds[0].status.is_proof:
             return Application(self.name, None, tuple(conds))
-        kappa, hconds, info = _homogeneous_sup(g, T, xs)
+        kappa, hconds, info = _homogeneous_sup(g, T, xs, ctx.seconds_left())
         conds += hconds
         if kappa is None:
             return Application(self.name, None, tuple(conds))
@@ -962,8 +972,7 @@ class Template(Rule):
             return Application(self.name, None, tuple(conds) + (_cond("the ratio is well defined", False, str(exc)),))
         if any(not c.status.is_proof for c in conds):
             return Application(self.name, None, tuple(conds))
-        seconds = None if ctx.budget is None else ctx.budget
-        res = sup_bound(q, box, accuracy=TEMPLATE_ACCURACY, budget=Budget(seconds=seconds or 30.0,
+        res = sup_bound(q, box, accuracy=TEMPLATE_ACCURACY, budget=Budget(seconds=ctx.seconds_left(),
                                                                          boxes=TEMPLATE_BOXES),
                         enclosure=TEMPLATE_ENCLOSURE)
         proved = res.certified is not None and res.certified < float("inf")
@@ -976,6 +985,7 @@ class Template(Rule):
         mono = sympy.Mul(*[ctx.measure(n).symbol ** p for n, p in self.exponents.items()])
         bound = kappa * mono if direction == "upper" else -kappa * mono
         info = {"estimate": res.estimate, "certified": res.certified, "gap": res.gap, "boxes": res.boxes,
+                "accurate": res.status is Status.CERTIFIED,
                 "seconds": res.seconds, "maximiser": {str(k): v for k, v in (res.maximiser or {}).items()}
                 if isinstance(res.maximiser, dict) else None}
         return Application(self.name, bound, tuple(conds), ((self.constant, res.certified, info),))
