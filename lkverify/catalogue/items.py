@@ -39,7 +39,22 @@ __all__ = ["Check", "Item", "Link", "Theorem", "theorem_verdict"]
 
 
 class Item:
-    """Base class of catalogue items (anything ``lkverify check`` can run)."""
+    """Base class of catalogue items (anything ``lkverify check`` can run).
+
+    A subclass sets ``name`` (and ``paper``, filled in by the loader from the proof
+    file) and implements :meth:`run`, returning a :class:`~lkverify.report.results.Report`.
+
+    Examples
+    --------
+    >>> class Demo(Item):
+    ...     name, paper = "demo", "mypaper"
+    >>> Demo().qualified_name
+    'mypaper.demo'
+    >>> Demo().run_constants()
+    Traceback (most recent call last):
+        ...
+    lkverify.errors.InputError: mypaper.demo: no constants job is declared for this item; items with one: see `lkverify list`
+    """
 
     name: str = ""
     title: str = ""
@@ -99,6 +114,27 @@ class Theorem(Item):
     choices : mapping
         Values of the proof's free parameters (λ, α, β, the region) used when the user
         does not set them (``--set lam=…``); they appear in the report's parameters.
+
+    Examples
+    --------
+    ``x' = −kx`` with ``V = x²/2``: the identity V̇ = −kx² is exact for every k, but the
+    hypothesis k > 0 fails at k = −1, and the verdict says so:
+
+    >>> from lkverify import Parameters, Vector, System, Equation, Functional, Term, t, DerivativeClaim, Hypothesis
+    >>> P = Parameters(); k = P.scalar("k", default=1); x = Vector("x", 1)
+    >>> sys = System([Equation(x, [Term(-k * x(t)[0])])], parameters=P)
+    >>> V = Functional([Term(x(t)[0] ** 2 / 2)])
+    >>> th = Theorem("demo", system=sys, functional=V, hypotheses=[Hypothesis("k > 0", k)],
+    ...              claims=[DerivativeClaim("Vdot", V, sys, [Term(-k * x(t)[0] ** 2)])])
+    >>> rep = th.run({"k": "-1"})
+    >>> [(r.name, r.status.value) for r in rep.results], rep.exit_code
+    ([('k > 0', 'failed'), ('Vdot', 'exact')], 1)
+    >>> rep.verdict.startswith("failed: hypotheses")
+    True
+    >>> Theorem("demo", system=sys, hypotheses=[Hypothesis("k > 0", k), Hypothesis("k > 0", k)])
+    Traceback (most recent call last):
+        ...
+    lkverify.errors.InputError: theorem demo: hypotheses and claims need distinct names, got 'k > 0' twice
     """
 
     def __init__(self, name: str, *, system: System, functional: Functional | None = None,
@@ -419,6 +455,15 @@ class Link:
     status : Status or None
         ``None`` when nothing of this run checks the link (it is missing).
     detail : str
+
+    Examples
+    --------
+    >>> from lkverify.status import Status
+    >>> link = Link("V ≥ φ", None, "no bound step checks it")
+    >>> link.missing, link.to_json()
+    (True, {'link': 'V ≥ φ', 'status': None, 'detail': 'no bound step checks it'})
+    >>> Link("V̇ along the system", Status.EXACT).missing
+    False
     """
 
     name: str
@@ -498,6 +543,20 @@ class Check(Item):
     inequality step refuted at an exact witness.  ``constants`` is what
     ``lkverify constants`` runs for the item (a ConstantsJob, or an object with
     its ``goals``, ``run`` and ``plot``), as for :class:`Theorem`.
+
+    Examples
+    --------
+    >>> from lkverify import Parameters
+    >>> from lkverify.report.results import Result
+    >>> P = Parameters(); k = P.scalar("k", default=1)
+    >>> below3 = lambda v: [Result("bound", "k < 3", Status.EXACT if v["k"] < 3 else Status.FAILED, v["k"])]
+    >>> item = Check("demo", parameters=P, checks=[below3], paper="mypaper")
+    >>> rep = item.run()
+    >>> rep.item, rep.parameters, [(r.name, r.status.value) for r in rep.results], rep.verdict
+    ('mypaper.demo', {'k': '1'}, [('k < 3', 'exact')], 'every check holds')
+    >>> rep = item.run({"k": "5"})
+    >>> rep.verdict, rep.exit_code
+    ('failed: k < 3', 1)
     """
 
     def __init__(self, name: str, *, parameters: Parameters, checks: Sequence[Callable], title: str = "",

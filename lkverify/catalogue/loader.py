@@ -63,6 +63,23 @@ class ProofFile:
         Item name → item, in declaration order.
     doc : str
         The module's docstring.
+
+    Examples
+    --------
+    >>> import pathlib, shutil, tempfile
+    >>> d = pathlib.Path(tempfile.mkdtemp()); path = d / "mine.py"
+    >>> _ = path.write_text('''"My proof."
+    ... from lkverify import Parameters
+    ... from lkverify.catalogue import Check
+    ... PAPER = "mypaper"
+    ... positive = Check("positive", parameters=Parameters(), checks=[])
+    ... ''')
+    >>> pf = load_proof_file(path)
+    >>> pf.paper, pf.path.name, list(pf.items), pf.doc
+    ('mypaper', 'mine.py', ['positive'], 'My proof.')
+    >>> pf.items["positive"].qualified_name           # the loader set the item's paper
+    'mypaper.positive'
+    >>> shutil.rmtree(d)
     """
 
     paper: str
@@ -98,6 +115,29 @@ def load_proof_file(path, *, load_limit: float | None = LOAD_LIMIT_SECONDS) -> P
         If the file does not exist, is not a ``.py`` file, fails to import, calls
         ``sys.exit`` while loading, does not load within ``load_limit``, declares no
         item, declares two items with the same name, or declares an inconsistent theorem.
+
+    Examples
+    --------
+    >>> import pathlib, shutil, tempfile
+    >>> d = pathlib.Path(tempfile.mkdtemp()); path = d / "mine.py"
+    >>> _ = path.write_text('''"My proof."
+    ... from lkverify import Parameters
+    ... from lkverify.catalogue import Check
+    ... PAPER = "mypaper"
+    ... positive = Check("positive", parameters=Parameters(), checks=[])
+    ... ''')
+    >>> load_proof_file(path).items["positive"].run().verdict
+    'every check holds'
+    >>> _ = (d / "exits.py").write_text("import sys; sys.exit(2)")
+    >>> load_proof_file(d / "exits.py")                 # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+        ...
+    lkverify.errors.InputError: .../exits.py: the proof file called sys.exit(2) while loading; expected a file that only declares items; remove the exit call (or guard it with if __name__ == "__main__")
+    >>> load_proof_file(d / "notes.txt")                # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+        ...
+    lkverify.errors.InputError: .../notes.txt: no such file; expected a catalogue name (see `lkverify list`) or a path to a .py proof file
+    >>> shutil.rmtree(d)
     """
     path = Path(path)
     if not path.is_file():
@@ -310,6 +350,15 @@ def catalogue(*, load_limit: float | None = LOAD_LIMIT_SECONDS) -> list[ProofFil
 
     Each is imported under its real name, so its items are the objects
     ``import lkverify.proofs.<paper>`` gives.
+
+    Examples
+    --------
+    >>> import lkverify.proofs.aleksandrov2023 as paper
+    >>> files = {pf.paper: pf for pf in catalogue()}
+    >>> files["aleksandrov2023"].items["theorem3"] is paper.theorem3       # one object per item
+    True
+    >>> [pf.paper for pf in catalogue()] == sorted(files)
+    True
     """
     names = sorted(info.name for info in pkgutil.iter_modules(_proofs_package().__path__))
     return [load_proof_module(f"{PROOFS_PACKAGE}.{name}", load_limit=load_limit) for name in names]
@@ -322,6 +371,30 @@ def find_items(spec: str, *, load_limit: float | None = LOAD_LIMIT_SECONDS) -> l
     ------
     InputError
         Unknown names (close names are suggested) or unloadable files.
+
+    Examples
+    --------
+    >>> [item.qualified_name for item in find_items("aleksandrov2023.theorem3")]
+    ['aleksandrov2023.theorem3']
+    >>> find_items("aleksandrov2023.theorm3")          # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+        ...
+    lkverify.errors.InputError: aleksandrov2023.theorm3: unknown item; did you mean aleksandrov2023.theorem3...?
+    >>> import pathlib, shutil, tempfile
+    >>> d = pathlib.Path(tempfile.mkdtemp()); path = d / "mine.py"
+    >>> _ = path.write_text('''"My proof."
+    ... from lkverify import Parameters
+    ... from lkverify.catalogue import Check
+    ... PAPER = "mypaper"
+    ... positive = Check("positive", parameters=Parameters(), checks=[])
+    ... ''')
+    >>> [item.qualified_name for item in find_items(f"{path}::positive")]
+    ['mypaper.positive']
+    >>> find_items(f"{path}::negative")                # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+        ...
+    lkverify.errors.InputError: .../mine.py::negative: no item 'negative' in .../mine.py; it has positive
+    >>> shutil.rmtree(d)
     """
     path_part, _, item_part = spec.partition("::")
     if path_part.endswith(".py") or "/" in path_part or Path(path_part).is_file():

@@ -42,6 +42,16 @@ class Chart:
         Closed forms the chart knows (``"distance"``: ‖s − r‖, ``"angle"``, ...),
         for cancelling vanishing factors by hand.
     description : str
+
+    Examples
+    --------
+    >>> from lkverify.certify.suprema import sup_bound
+    >>> ch = unit_vector_angles()
+    >>> ch.description, ch.parameters
+    ('unit vector s(θ, φ) on the sphere', (theta, phi))
+    >>> res = sup_bound(ch.value[2], ch.region)                 # the largest z-component of a unit vector
+    >>> res.status.value, res.lower, res.certified < 1.0001
+    ('certified', 1.0, True)
     """
 
     value: sympy.Matrix

@@ -239,6 +239,20 @@ class ConditionResult:
         matrix P, a rational constant c, a rational vector y.
     parts : tuple of ConditionResult
         The sub-conditions the verdict rests on.
+
+    Examples
+    --------
+    >>> from lkverify.certify.matrices import matrix_positive_definite
+    >>> ok = matrix_positive_definite([[2, 1], [1, 2]])         # eigenvalues 1 and 3
+    >>> ok.status.value, ok.holds, ok.margin.exact
+    ('exact', True, 1)
+    >>> bad = matrix_positive_definite([[1, 2], [2, 1]])
+    >>> bad.holds, [str(c) for c in bad.witness]               # xᵀMx < 0 at the witness
+    (False, ['-2', '1'])
+    >>> ConditionResult("x > 0", Status.FAILED)
+    Traceback (most recent call last):
+    ...
+    lkverify.errors.InputError: a failed result needs a witness (the counterexample)
     """
 
     name: str

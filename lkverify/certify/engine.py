@@ -329,6 +329,18 @@ class Enclosure:
     |∂f|·width) and with an affine form (:attr:`use_affine`, skipped once the
     bound is ``≤ enough``).  Subclasses choose the flags or override
     :meth:`bound` altogether.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify.certify.regions import parse_region
+    >>> x = sympy.Symbol("x")
+    >>> obj = Objective(x * (1 - x), parse_region({x: (0, 1)}, [x]))          # sup 1/4 at x = 1/2
+    >>> b = Enclosure(obj).bound(0, (0.0,), (1.0,))         # natural balls: [0, 1]·[0, 1]
+    >>> round(b.upper, 6), b.centre, float(b.centre_value), b.inside
+    (1.0, (0.5,), 0.25, True)
+    >>> Enclosure.use_gradient, MeanValueAffine.use_gradient, MeanValueAffine.use_affine
+    (False, True, True)
     """
 
     use_gradient = False
@@ -422,23 +434,70 @@ class Enclosure:
 
 
 class NaturalBalls(Enclosure):
-    """The expression evaluated on the box's balls (the cheapest enclosure)."""
+    """The expression evaluated on the box's balls (the cheapest enclosure).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify.certify.regions import parse_region
+    >>> x = sympy.Symbol("x")
+    >>> obj = Objective(x * (1 - x), parse_region({x: (0, 1)}, [x]))          # sup 1/4 at x = 1/2
+    >>> round(NaturalBalls(obj).bound(0, (0.0,), (1.0,)).upper, 6)            # x ∈ [0, 1], 1 − x ∈ [0, 1]
+    1.0
+    >>> round(NaturalBalls(obj).bound(0, (0.4,), (0.6,)).upper, 6)            # 0.6 · 0.6
+    0.36
+    """
 
 
 class MeanValue(Enclosure):
-    """Natural balls ∩ the mean-value form with the arb-enclosed gradient (plus monotonicity)."""
+    """Natural balls ∩ the mean-value form with the arb-enclosed gradient (plus monotonicity).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify.certify.regions import parse_region
+    >>> x = sympy.Symbol("x")
+    >>> obj = Objective(x * (1 - x), parse_region({x: (0, 1)}, [x]))          # sup 1/4 at x = 1/2
+    >>> round(MeanValue(obj).bound(0, (0.0,), (1.0,)).upper, 6)               # f(1/2) + |f'|·1/2
+    0.75
+    >>> b = MeanValue(obj).bound(0, (0.0,), (0.25,))      # f' > 0: collapsed to the face x = 1/4
+    >>> b.lo, b.hi, b.upper
+    ((0.25,), (0.25,), 0.1875)
+    """
 
     use_gradient = True
 
 
 class Affine(Enclosure):
-    """Natural balls ∩ affine arithmetic (tighter on wide boxes of trigonometric expressions)."""
+    """Natural balls ∩ affine arithmetic (tighter on wide boxes of trigonometric expressions).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify.certify.regions import parse_region
+    >>> x = sympy.Symbol("x")
+    >>> obj = Objective(x * (1 - x), parse_region({x: (0, 1)}, [x]))          # sup 1/4 at x = 1/2
+    >>> round(Affine(obj).bound(0, (0.0,), (1.0,)).upper, 6)                  # natural balls give 1
+    0.5
+    >>> round(Affine(obj).bound(0, (0.4,), (0.6,)).upper, 6)                  # natural balls give 0.36
+    0.26
+    """
 
     use_affine = True
 
 
 class MeanValueAffine(Enclosure):
-    """Natural balls ∩ mean-value form ∩ affine form (the default)."""
+    """Natural balls ∩ mean-value form ∩ affine form (the default).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify.certify.regions import parse_region
+    >>> x = sympy.Symbol("x")
+    >>> obj = Objective(x * (1 - x), parse_region({x: (0, 1)}, [x]))          # sup 1/4 at x = 1/2
+    >>> [round(E(obj).bound(0, (0.4,), (0.6,)).upper, 6) for E in (NaturalBalls, MeanValue, MeanValueAffine)]
+    [0.36, 0.27, 0.26]
+    """
 
     use_gradient = True
     use_affine = True
@@ -904,6 +963,21 @@ class BranchAndBound:
         The strategy that bounds the function on a box (see the module docstring).
     roots : sequence of (piece, lo, hi)
         The boxes whose union is the region (float end points covering it).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify.certify.regions import parse_region
+    >>> x = sympy.Symbol("x")
+    >>> obj = Objective(x * (1 - x), parse_region({x: (0, 1)}, [x]))          # sup 1/4 at x = 1/2
+    >>> bb = BranchAndBound(MeanValue(obj), obj.roots())
+    >>> out = bb.run(Goal.SUPREMUM, rel_gap=1e-3, boxes=1000, deadline=math.inf)
+    >>> out.stop, out.lower, out.upper <= 0.25 * (1 + 1e-3)
+    (<Stop.DONE: 'done'>, 0.25, True)
+    >>> out = BranchAndBound(NaturalBalls(obj), obj.roots()).run(Goal.DECIDE, threshold=0.3, boxes=1000,
+    ...                                                            deadline=math.inf)
+    >>> out.stop, out.upper <= 0.3                         # sup f ≤ 0.3 proved
+    (<Stop.DONE: 'done'>, True)
     """
 
     def __init__(self, enclosure: Enclosure, roots: Sequence):

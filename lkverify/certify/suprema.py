@@ -140,6 +140,16 @@ class SupResult:
         For a best constant: its name (``""`` for a plain supremum).
     lhs_text, template_text : str
         For a best constant: the two sides of "lhs ≤ c·template".
+
+    Examples
+    --------
+    >>> import sympy
+    >>> x = sympy.Symbol("x")
+    >>> res = sup_bound(x * (1 - x), {x: (0, 1)})            # sup = 1/4 at x = 1/2
+    >>> res.status, res.maximiser, res.lower
+    (<Status.CERTIFIED: 'certified'>, {'x': 0.5}, 0.25)
+    >>> 0.25 <= res.certified <= 0.26, res.gap <= 1e-2
+    (True, True)
     """
 
     expr_text: str
@@ -339,6 +349,18 @@ class CheckResult:
     boxes : int
     seconds : float
     detail : str
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify.certify.ratios import check_constant
+    >>> x = sympy.Symbol("x")
+    >>> ok = check_constant(x**2 * (1 - x), x**2, {x: (0, 1)}, 1)     # x²(1 − x) ≤ 1·x²
+    >>> ok.status, ok.claim
+    (<Status.CERTIFIED: 'certified'>, 'x**2*(1 - x) <= 1*(x**2) on {x ∈ [0, 1]}')
+    >>> bad = check_constant(x**2 * (1 - x), x**2, {x: (0, 1)}, sympy.Rational(1, 2))
+    >>> bad.status, bad.point, bad.margin > 0                  # refuted at x = 1/16
+    (<Status.FAILED: 'failed'>, {'x': 0.0625}, True)
     """
 
     name: str

@@ -34,7 +34,17 @@ __all__ = ["ParameterKind", "ParameterSpec", "Parameters", "SymmetricMatrix"]
 
 
 class ParameterKind(Label):
-    """What a parameter is, and so which values are admissible."""
+    """What a parameter is, and so which values are admissible.
+
+    Examples
+    --------
+    >>> P = Parameters()
+    >>> tau = P.delay("tau")
+    >>> P["tau"].kind is ParameterKind.DELAY, P["tau"].kind == "delay (positive scalar)"
+    (True, True)
+    >>> str(ParameterKind.SPD_MATRIX)
+    'symmetric positive-definite matrix'
+    """
 
     REAL = "real scalar"
     POSITIVE = "positive scalar"
@@ -78,6 +88,18 @@ class ParameterSpec:
         The paper's value.
     latex : str
     description : str
+
+    Examples
+    --------
+    >>> P = Parameters()
+    >>> k = P.scalar("k", positive=True, default="1/2")
+    >>> spec = P["k"]
+    >>> spec.kind, spec.default, spec.check("3/4")
+    (<ParameterKind.POSITIVE: 'positive scalar'>, 1/2, 3/4)
+    >>> spec.check(-1)
+    Traceback (most recent call last):
+    ...
+    lkverify.errors.InputError: k: expected k > 0 (it must be positive), got k=-1
     """
 
     name: str
@@ -218,6 +240,18 @@ class Parameters:
     """A registry of declared parameters; each declaration returns the SymPy object to use.
 
     Names must be unique within one registry.
+
+    Examples
+    --------
+    >>> P = Parameters()
+    >>> k = P.scalar("k", positive=True, default=2)
+    >>> tau = P.delay("tau")
+    >>> P.resolve({"tau": "1/10"})                      # checked values, defaults filled in
+    {'tau': 1/10, 'k': 2}
+    >>> P.resolve({"taw": 1})
+    Traceback (most recent call last):
+    ...
+    lkverify.errors.InputError: taw: no such parameter; did you mean tau?
     """
 
     def __init__(self):

@@ -46,6 +46,20 @@ class Vector:
         How the state is typeset (``r"\\omega"``); defaults to ``name``.
     text : str, optional
         How the state is printed in plain text (``"ω"``); defaults to ``name``.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify.declare.symbols import t
+    >>> tau = sympy.Symbol("tau", positive=True)
+    >>> Vector("omega", text="ω")(t - tau).T
+    Matrix([[omega_x(t - tau), omega_y(t - tau), omega_z(t - tau)]])
+    >>> Vector("x", 2).constraint_polynomials(t)        # a plain vector is unconstrained
+    []
+    >>> Vector("2x")
+    Traceback (most recent call last):
+    ...
+    lkverify.errors.InputError: state name must be an identifier, got '2x'
     """
 
     unit = False
@@ -78,7 +92,15 @@ class Vector:
 
 
 class UnitVector(Vector):
-    """A unit vector function of time, ‖s(t)‖ = 1 for every t (e.g. Poisson's equation)."""
+    """A unit vector function of time, ‖s(t)‖ = 1 for every t (e.g. Poisson's equation).
+
+    Examples
+    --------
+    >>> from lkverify.declare.symbols import t, xi
+    >>> s = UnitVector("s")
+    >>> s.unit, s.constraint_polynomials(xi)
+    (True, [s_x(xi)**2 + s_y(xi)**2 + s_z(xi)**2 - 1])
+    """
 
     unit = True
 
@@ -91,6 +113,20 @@ class Frame:
     """An orthonormal right-handed triad of unit-vector states (s1, s2, s3).
 
     The constraints are sᵢ·sⱼ = δᵢⱼ and s3 = s1 × s2.
+
+    Examples
+    --------
+    >>> from lkverify.declare.symbols import t
+    >>> F = Frame()
+    >>> [v.name for v in F], F[2].frame is F
+    (['s1', 's2', 's3'], True)
+    >>> polys = F.constraint_polynomials(t)
+    >>> len(polys), polys[1]                # 6 products sᵢ·sⱼ − δᵢⱼ, then the 3 components of s3 − s1 × s2
+    (9, s1_x(t)*s2_x(t) + s1_y(t)*s2_y(t) + s1_z(t)*s2_z(t))
+    >>> Frame(["a", "b"])
+    Traceback (most recent call last):
+    ...
+    lkverify.errors.InputError: a frame has three vectors, got names ['a', 'b']
     """
 
     def __init__(self, names: Sequence[str] = ("s1", "s2", "s3"), *, latex: Sequence[str] | None = None):

@@ -47,6 +47,18 @@ class Equation:
         An invertible matrix (Θ in Euler's equations); identity if omitted.
     mass_text, mass_latex : str
         How the mass is printed in block labels ("Θ").
+
+    Examples
+    --------
+    >>> import sympy
+    >>> k, x = sympy.Symbol("k", positive=True), Vector("x", 1)
+    >>> eq = Equation(x, [Term(-k * x(t), text="−k x")], mass=[[2]], mass_text="m")
+    >>> [(term.text, term.expr) for term in eq.solved_terms()]     # ẋ = m⁻¹(−k x)
+    [('m⁻¹(−k x)', Matrix([[-k*x_1(t)/2]]))]
+    >>> Equation(Vector("w"), [Term(x(t), text="x")])
+    Traceback (most recent call last):
+    ...
+    lkverify.errors.InputError: Equation for w: term 'x' has shape (1, 1), expected (3, 1)
     """
 
     state: Vector
@@ -104,6 +116,16 @@ class System:
         The registry of every parameter the equations use.
     name : str
         The paper's label, e.g. "(10),(12)".
+
+    Examples
+    --------
+    >>> P = Parameters(); k = P.scalar("k", positive=True); tau = P.delay("tau")
+    >>> x = Vector("x", 1)
+    >>> sys = System([Equation(x, [Term(-k * x(t - tau), text="−k x(t−τ)")])], parameters=P, name="(1)")
+    >>> sys, sys.rhs(x)
+    (System('(1)', states=['x']), Matrix([[-k*x_1(t - tau)]]))
+    >>> sys.derivative_substitution(t - tau)            # ẋ at the delayed time
+    {x_1(t - tau): -k*x_1(t - 2*tau)}
     """
 
     def __init__(self, equations: Sequence[Equation], *, parameters: Parameters, name: str = ""):

@@ -98,6 +98,20 @@ class CompiledSystem:
         ``y`` (state then auxiliary symbols), ``Z`` (lag symbols, one row per lag),
         ``t``, ``quadratures`` (placeholders of quadrature terms).  Other back ends
         (e.g. the jitcdde benchmark) translate from it.
+
+    Examples
+    --------
+    A window integral becomes one auxiliary state after the state ``x``:
+
+    >>> import numpy as np, sympy
+    >>> from lkverify import Parameters, Vector, System, Equation, Term, t
+    >>> P = Parameters(); tau = P.delay("tau", default=1); x = Vector("x", 1); s = sympy.Symbol("s")
+    >>> sys = System([Equation(x, [Term(-sympy.Integral(x(s)[0], (s, t - tau, t)))])], parameters=P)
+    >>> comp = compile_system(sys)
+    >>> comp.layout, comp.n_states, comp.n, [(aux.kind, aux.lag) for aux in comp.aux]
+    ({'x': slice(0, 1, None)}, 1, 2, [('window', 1.0)])
+    >>> comp.fun(0.0, np.array([2.0, 3.0]), np.array([[1.0, 0.0]]), None).tolist()   # ẋ = −z, ż = x(t) − x(t−1)
+    [-3.0, 1.0]
     """
 
     system: System
@@ -201,6 +215,22 @@ def compile_system(system: System, values: Mapping[str, object] | None = None, *
         positive number, or a kernel is not integrable.
     UnsupportedInput
         A term of a kind the simulator does not take (a multiple integral).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from lkverify import Parameters, Vector, System, Equation, Term, t
+    >>> P = Parameters(); a = P.scalar("a"); tau = P.delay("tau", default=1)
+    >>> x = Vector("x", 1); sys = System([Equation(x, [Term(-a * x(t - tau)[0])])], parameters=P)
+    >>> comp = compile_system(sys, {"a": 2})
+    >>> comp.lags, comp.symbolic["rhs"]
+    ((1.0,), [-2*_Z0_0])
+    >>> comp.fun(0.0, np.array([1.0]), np.array([[0.5]]), None).tolist()     # ẋ = −2 x(t − 1)
+    [-1.0]
+    >>> compile_system(sys)
+    Traceback (most recent call last):
+        ...
+    lkverify.errors.InputError: system: parameters without a value: a; expected a value for every parameter the system uses; give them in the parameter values (NAME=VALUE)
     """
     if integrals not in ("auto", "quadrature"):
         raise InputError(f"integrals: expected 'auto' or 'quadrature', got {integrals!r}")

@@ -36,6 +36,18 @@ class EnvelopeCheck:
     t_max_ratio : float
     first_violation : float or None
         The first sample time with quantity > envelope (relative tolerance ``rtol``).
+
+    Examples
+    --------
+    e^(−t/3) against the envelope e^(−t/2): above it from the first sample after 0.
+
+    >>> import numpy as np
+    >>> t = np.linspace(0, 4, 5)
+    >>> chk = cross_check(t, np.exp(-t / 3), np.exp(-t / 2), name="e^(-t/2)")
+    >>> chk.name, chk.status.value, chk.first_violation, chk.t_max_ratio
+    ('e^(-t/2)', 'failed', 1.0, 4.0)
+    >>> {k: round(v, 6) for k, v in chk.to_json().items()}         # max ratio e^(4/6)
+    {'max_ratio': 1.947734, 't_max_ratio': 4.0, 'first_violation': 1.0, 'samples': 5}
     """
 
     name: str
@@ -59,6 +71,20 @@ def cross_check(t, quantity, envelope, *, name: str = "envelope", rtol: float = 
         Sample times and the two curves at them.
     rtol : float
         Relative slack for rounding of the simulated values.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.array([0.0, 1.0, 2.0])
+    >>> chk = cross_check(t, [1.0, 0.5, 0.2], [1.0, 0.6, 0.4])
+    >>> chk.status.value, round(chk.max_ratio, 6), chk.first_violation
+    ('simulated', 1.0, None)
+    >>> cross_check(t, [1.0, 0.7, 0.2], [1.0, 0.6, 0.4]).first_violation
+    1.0
+    >>> cross_check(t, [1.0, 0.5], [1.0, 0.6, 0.4])
+    Traceback (most recent call last):
+        ...
+    lkverify.errors.InputError: t, quantity and envelope must have one shape, got (3,), (2,), (3,)
     """
     t = np.asarray(t, dtype=float)
     q = np.asarray(quantity, dtype=float)

@@ -193,6 +193,17 @@ class DDESolution:
         The derivative-discontinuity times in ``(t0, t_end)`` the steps landed on.
     t_eval, y_eval : ndarray or None
         The requested sample times up to ``t[-1]`` and the solution there (shape (m, n)).
+
+    Examples
+    --------
+    >>> res = solve_dde(lambda t, y, Z, past: -Z[0], (0.0, 3.0), [1.0], lags=[1.0])
+    >>> res.success, res.breakpoints.tolist(), float(res.t[-1]), res.y.shape[1]
+    (True, [1.0, 2.0], 3.0, 1)
+    >>> res = solve_dde(lambda t, y, Z, past: y, (0.0, 30.0), [1.0], lags=[1.0], divergence_bound=1e3)
+    >>> res.success, res.outcome.value, round(res.t_fail, 3)       # e^t passes 1e3 at t = ln 1000
+    (False, 'diverged', 6.908)
+    >>> res.message
+    '‖y‖ exceeded divergence_bound=1000 at t=6.907755277'
     """
 
     outcome: Outcome

@@ -59,6 +59,18 @@ class Canonicalizer:
         ``constraints(times)`` → vanishing polynomials (in state values at those
         times and in constant parameters); typically ``System.constraint_polynomials``.
     deadline : Deadline, optional
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import UnitVector, Vector, t, xi
+    >>> s = UnitVector("s")
+    >>> c = Canonicalizer(lambda times: [p for u in times for p in s.constraint_polynomials(u)])
+    >>> c.normal_expr(s(t)[0] ** 2 + s(t)[1] ** 2)         # reduced modulo ‖s(t)‖ = 1
+    1 - s_z(t)**2
+    >>> x, eta = Vector("x", 1), sympy.Symbol("eta")      # the integration variable's name is irrelevant
+    >>> c.normal_expr(sympy.Integral(x(xi)[0] ** 2, (xi, 0, t)) - sympy.Integral(x(eta)[0] ** 2, (eta, 0, t)))
+    0
     """
 
     def __init__(self, constraints=None, *, deadline: Deadline | None = None):
@@ -293,7 +305,19 @@ class Canonicalizer:
 
 @dataclasses.dataclass
 class NormalForms:
-    """Normal-form polynomials sharing one ring (see :meth:`Canonicalizer.normal_forms`)."""
+    """Normal-form polynomials sharing one ring (see :meth:`Canonicalizer.normal_forms`).
+
+    Examples
+    --------
+    >>> from lkverify import UnitVector, t
+    >>> s = UnitVector("s")
+    >>> c = Canonicalizer(lambda times: [p for u in times for p in s.constraint_polynomials(u)])
+    >>> nf = c.normal_forms([s(t)[0] ** 2 + s(t)[1] ** 2, 1 - s(t)[2] ** 2, s(t)[2]])
+    >>> nf.polys[0] == nf.polys[1], nf.polys[0] == nf.polys[2]     # equal normal forms: equal on ‖s‖ = 1
+    (True, False)
+    >>> nf.to_expr(nf.polys[0])
+    1 - s_z(t)**2
+    """
 
     ring: PolyRing
     polys: list

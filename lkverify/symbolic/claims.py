@@ -32,6 +32,20 @@ class DerivativeClaim:
     terms : sequence of Term
         The claimed V̇, one labelled term per printed term.
     description : str
+
+    Examples
+    --------
+    >>> from lkverify import Equation, Functional, Parameters, System, Term, Vector, t
+    >>> P = Parameters(); k = P.scalar("k", positive=True); x = Vector("x", 1)
+    >>> sys = System([Equation(x, [Term(-k * x(t), text="−k x")])], parameters=P)
+    >>> V = Functional([Term(x(t)[0] ** 2 / 2, text="x²/2")])
+    >>> claim = DerivativeClaim("(3)", V, sys, [Term(-k * x(t)[0] ** 2, text="−k x²")])
+    >>> str(claim.check({}, values={}).status)
+    'exact'
+    >>> wrong = DerivativeClaim("(3')", V, sys, [Term(-2 * k * x(t)[0] ** 2, text="−2k x²")])
+    >>> r = wrong.check({}, values={})
+    >>> str(r.status), r.differences[0].message
+    ('failed', 'wrong coefficient: printed [−2k x²] = 2 × (derived [∂/∂x [x²/2] · (−k x)])')
     """
 
     name: str
@@ -65,7 +79,19 @@ class DerivativeClaim:
 
 @dataclasses.dataclass(frozen=True)
 class IdentityClaim:
-    """The claim ``Σ lhs = Σ rhs`` (an intermediate equality of a proof)."""
+    """The claim ``Σ lhs = Σ rhs`` (an intermediate equality of a proof).
+
+    Examples
+    --------
+    >>> from lkverify import Equation, Parameters, System, Term, UnitVector, t
+    >>> s = UnitVector("s")
+    >>> sys = System([Equation(s, [Term(0 * s(t), text="0")])], parameters=Parameters())
+    >>> claim = IdentityClaim("(5)", (Term(1 - s(t)[2] ** 2, text="1 − s_z²"),),
+    ...                       (Term(s(t)[0] ** 2 + s(t)[1] ** 2, text="s_x² + s_y²"),), sys)
+    >>> r = claim.check({}, values={})                  # uses ‖s‖ = 1
+    >>> str(r.status), r.holds
+    ('exact', True)
+    """
 
     name: str
     lhs: tuple

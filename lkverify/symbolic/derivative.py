@@ -51,6 +51,15 @@ class Block:
     text, latex : str
         Readable labels.
     expr : sympy.Expr
+
+    Examples
+    --------
+    >>> from lkverify import Equation, Functional, Parameters, System, Term, Vector, t
+    >>> P = Parameters(); k = P.scalar("k", positive=True); x = Vector("x", 1)
+    >>> sys = System([Equation(x, [Term(-k * x(t), text="−k x")])], parameters=P)
+    >>> (b,) = derivative_along(Functional([Term(x(t)[0] ** 2 / 2, text="x²/2")]), sys).blocks
+    >>> b.source, b.kind, b.text, b.expr
+    ('x²/2', 'dynamics', '∂/∂x [x²/2] · (−k x)', -k*x_1(t)**2)
     """
 
     source: str
@@ -62,7 +71,25 @@ class Block:
 
 @dataclasses.dataclass(frozen=True)
 class DerivativeResult:
-    """V̇ along a system, as labelled blocks."""
+    """V̇ along a system, as labelled blocks.
+
+    Examples
+    --------
+    >>> from lkverify import Equation, Functional, Parameters, System, Term, Vector, t, xi
+    >>> from lkverify.declare.functional import window_integral
+    >>> P = Parameters(); k = P.scalar("k", positive=True); tau = P.delay("tau"); x = Vector("x", 1)
+    >>> sys = System([Equation(x, [Term(-k * x(t), text="−k x")])], parameters=P)
+    >>> V = Functional([Term(x(t)[0] ** 2 / 2, text="x²/2"),
+    ...                 Term(window_integral(x(xi)[0] ** 2, tau), text="∫x²")])
+    >>> d = derivative_along(V, sys)
+    >>> d.grouped()
+    {'point': -k*x_1(t)**2 + x_1(t)**2, 'delayed': -x_1(t - tau)**2, 'integral': 0}
+    >>> print(d.as_text())
+    dV/dt of V along the system: 3 blocks
+      [dynamics] ∂/∂x [x²/2] · (−k x)
+      [upper limit] ∫ in [∫x²]: upper limit
+      [lower limit] ∫ in [∫x²]: lower limit
+    """
 
     functional: Functional
     system: System
@@ -112,6 +139,15 @@ def derivative_along(functional: Functional, system: System) -> DerivativeResult
     -------
     DerivativeResult
         Labelled blocks whose sum is V̇, with the dynamics substituted.
+
+    Examples
+    --------
+    >>> from lkverify import Equation, Functional, Parameters, System, Term, Vector, t
+    >>> P = Parameters(); k = P.scalar("k", positive=True); tau = P.delay("tau"); x = Vector("x", 1)
+    >>> sys = System([Equation(x, [Term(-k * x(t - tau), text="−k x(t−τ)")])], parameters=P)
+    >>> d = derivative_along(Functional([Term(x(t)[0] ** 2 / 2, text="x²/2")]), sys)
+    >>> d.expr                                  # x·ẋ with ẋ = −k x(t−τ)
+    -k*x_1(t)*x_1(t - tau)
     """
     funcs = system.state_functions()
     blocks: list[Block] = []

@@ -35,7 +35,18 @@ DEFAULT_PREC = 128
 
 
 class UnsupportedExpression(InputError):
-    """A SymPy node outside the interval whitelist :data:`SUPPORTED` (never approximated)."""
+    """A SymPy node outside the interval whitelist :data:`SUPPORTED` (never approximated).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> x = sympy.Symbol("x")
+    >>> try:
+    ...     enclose(sympy.gamma(x), {x: 2})
+    ... except UnsupportedExpression as exc:
+    ...     print(str(exc).split(";")[0])
+    cannot enclose gamma (in gamma(x)) in interval arithmetic
+    """
 
 
 def _const_ball(node: sympy.Expr) -> arb | None:
@@ -481,6 +492,18 @@ class SignResult:
         The arb precision (bits) of the enclosure; 0 for an exact rational.
     detail : str
         How it was decided, or why not.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> r = sign_of(sympy.sqrt(2) - sympy.Rational(99, 70))     # 1.41421… − 1.41428…
+    >>> r.sign, r.upper < 0, r.prec, r.detail
+    (-1, True, 64, 'arb enclosure at 64 bits excludes 0')
+    >>> r = sign_of(sympy.Rational(-3, 4))
+    >>> r.sign, r.lower == r.upper, r.detail
+    (-1, True, 'exact rational')
+    >>> sign_of(sympy.sin(sympy.pi)).sign is None               # the value is 0
+    True
     """
 
     sign: int | None

@@ -79,6 +79,23 @@ class TermBound:
     rule : Rule
     then : tuple of Young
         Rewrites applied to the rule's bound, in order (e.g. Young's inequality).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import Equation, Functional, Parameters, System, Term, Vector, t
+    >>> from lkverify.certify.steps import Rayleigh, TermBound, TermwiseBound, norm_measure
+    >>> P = Parameters(); x = Vector("x", 2); n = norm_measure("n", x(t)); N = n.symbol
+    >>> M = sympy.Matrix([[2, 1], [1, 2]])                     # eigenvalues 1 and 3
+    >>> V = Functional([Term((x(t).T * M * x(t))[0], text="xᵀMx")])
+    >>> sys_ = System([Equation(x, [Term(-x(t))])], parameters=P)
+    >>> tb = TermBound("xᵀMx", 3 * N**2, Rayleigh(x(t), M, eigenvalue=3, norm_squared=N**2))
+    >>> tb.terms, tb.bound
+    (('xᵀMx',), 3*n**2)
+    >>> TermBound("xᵀMx", 3 * N**2, rule="Rayleigh")
+    Traceback (most recent call last):
+    ...
+    lkverify.errors.InputError: term bound ('xᵀMx',): rule: expected a rule of lkverify.certify.steps.rules, got str
     """
 
     terms: object
@@ -98,7 +115,24 @@ class TermBound:
 
 @dataclasses.dataclass(frozen=True)
 class TermResult:
-    """The check of one term bound."""
+    """The check of one term bound.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import Equation, Functional, Parameters, System, Term, Vector, t
+    >>> from lkverify.certify.steps import Rayleigh, TermBound, TermwiseBound, norm_measure
+    >>> P = Parameters(); x = Vector("x", 2); n = norm_measure("n", x(t)); N = n.symbol
+    >>> M = sympy.Matrix([[2, 1], [1, 2]])                     # eigenvalues 1 and 3
+    >>> V = Functional([Term((x(t).T * M * x(t))[0], text="xᵀMx")])
+    >>> sys_ = System([Equation(x, [Term(-x(t))])], parameters=P)
+    >>> tb = TermBound("xᵀMx", 3 * N**2, Rayleigh(x(t), M, eigenvalue=3, norm_squared=N**2))
+    >>> tr = TermwiseBound("V ≤ 3n²", V, sys_, "V", [tb], 3 * N**2, [n]).check(P.resolve({})).terms[0]
+    >>> tr.statement, tr.status.value, tr.bound
+    ('xᵀMx ≤ 3*n**2', 'exact', 3*n**2)
+    >>> tr.detail
+    'Rayleigh quotient (eigenvalue bound): 4 side conditions hold'
+    """
 
     terms: tuple
     statement: str
@@ -118,7 +152,24 @@ class TermResult:
 
 @dataclasses.dataclass(frozen=True)
 class ChainResult:
-    """The check of a :class:`TermwiseBound`: per term, the sum, and the constants certified."""
+    """The check of a :class:`TermwiseBound`: per term, the sum, and the constants certified.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import Equation, Functional, Parameters, System, Term, Vector, t
+    >>> from lkverify.certify.steps import Rayleigh, TermBound, TermwiseBound, norm_measure
+    >>> P = Parameters(); x = Vector("x", 2); n = norm_measure("n", x(t)); N = n.symbol
+    >>> M = sympy.Matrix([[2, 1], [1, 2]])                     # eigenvalues 1 and 3
+    >>> V = Functional([Term((x(t).T * M * x(t))[0], text="xᵀMx")])
+    >>> sys_ = System([Equation(x, [Term(-x(t))])], parameters=P)
+    >>> tb = TermBound("xᵀMx", 3 * N**2, Rayleigh(x(t), M, eigenvalue=3, norm_squared=N**2))
+    >>> res = TermwiseBound("V ≤ 3n²", V, sys_, "V", [tb], 3 * N**2, [n]).check(P.resolve({}))
+    >>> res.status.value, res.detail
+    ('exact', 'proved term by term (1 bounds, every application exact); Σ bounds = rhs')
+    >>> [(row.kind.value, row.name) for row in res.results()]      # one row per term, then the step
+    [('bound', 'V ≤ 3n²: xᵀMx ≤ 3*n**2'), ('bound', 'V ≤ 3n²')]
+    """
 
     name: str
     status: Status
@@ -186,6 +237,26 @@ class TermwiseBound:
     witness_time : number, optional
         For time-varying systems: the time t at which witnesses are sought (every t ≥ t0
         is admissible, so a violation at one is a refutation).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import Equation, Functional, Parameters, System, Term, Vector, t
+    >>> from lkverify.certify.steps import Rayleigh, TermBound, TermwiseBound, norm_measure
+    >>> P = Parameters(); x = Vector("x", 2); n = norm_measure("n", x(t)); N = n.symbol
+    >>> M = sympy.Matrix([[2, 1], [1, 2]])                     # eigenvalues 1 and 3
+    >>> V = Functional([Term((x(t).T * M * x(t))[0], text="xᵀMx")])
+    >>> sys_ = System([Equation(x, [Term(-x(t))])], parameters=P)
+    >>> tb = TermBound("xᵀMx", 3 * N**2, Rayleigh(x(t), M, eigenvalue=3, norm_squared=N**2))
+    >>> step = TermwiseBound("V ≤ 3n²", V, sys_, "V", [tb], 3 * N**2, [n])
+    >>> step.check(P.resolve({})).status.value
+    'exact'
+    >>> step.with_bounds(rhs=2 * N**2).check(P.resolve({})).detail
+    'the term bounds do not add up to the right-hand side: rhs − Σ bounds = -n**2 is not shown ≥ 0'
+    >>> low = TermBound("xᵀMx", 2 * N**2, Rayleigh(x(t), M, eigenvalue=2, norm_squared=N**2))   # 2 < λ_max
+    >>> tr = step.with_bounds(bounds=[low], rhs=2 * N**2, witness_seconds=1).check(P.resolve({})).terms[0]
+    >>> tr.status.value, tr.witness.violation[0] > 0                # refuted near x = (1, 1)/√2
+    ('failed', True)
     """
 
     name: str
@@ -427,6 +498,24 @@ class Decay:
         Output name → the sentence shown before its value.
     paper : mapping
         The paper's printed constants, for comparison.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
+    >>> from lkverify.certify.steps import Rayleigh, Region, TermBound, TermwiseBound, norm_measure
+    >>> P = Parameters(); x = Vector("x", 2); n = norm_measure("n", x(t)); N = n.symbol
+    >>> sys_ = System([Equation(x, [Term(-x(t))])], parameters=P)
+    >>> def step(role, c, eig, rel="<="):                # the term c‖x‖² bounded by c·eig·n²
+    ...     rule = Rayleigh(x(t), sympy.eye(2), factor=c, eigenvalue=eig, norm_squared=N**2)
+    ...     return TermwiseBound(role, None, sys_, "terms", [TermBound("T", c * eig * N**2, rule)], c * eig * N**2,
+    ...                          [n], relation=rel, region=Region({n: 1}), role=role,
+    ...                          terms=(Term(c * x(t).dot(x(t)), text="T"),))
+    >>> steps = {s.role: (s, s.check(P.resolve({}))) for s in (step("lower", 1, 1, ">="), step("upper", 1, 2),
+    ...                                                         step("vdot", -2, 1))}
+    >>> m = Decay(1, ("n",), {}, {"d1": "n"}).model(steps, P.resolve({}))
+    >>> m.lower, m.upper, m.vdot, m.region
+    (n**2, 2*n**2, -2*n**2, {n: 1})
     """
 
     p: object

@@ -61,6 +61,18 @@ class Measure:
         The window length h (the window is [t − h, t]); unused for ``norm``.
     text : str
         How reports print it.
+
+    Examples
+    --------
+    >>> from lkverify import Vector, t, xi
+    >>> x = Vector("x", 2)
+    >>> n = Measure("n", "norm", x(t))
+    >>> n.definition, n.substitute(n.symbol ** 2)
+    (sqrt(x_1(t)**2 + x_2(t)**2), x_1(t)**2 + x_2(t)**2)
+    >>> Measure("n", "norm", x(xi))
+    Traceback (most recent call last):
+    ...
+    lkverify.errors.InputError: measure n: a norm measure is written at t or at one delayed time t − c, got xi
     """
 
     name: str
@@ -140,22 +152,60 @@ class Measure:
 
 
 def norm_measure(name: str, vector, *, text: str = "") -> Measure:
-    """‖vector(t)‖, e.g. ``norm_measure("w", omega(t))``."""
+    """‖vector(t)‖, e.g. ``norm_measure("w", omega(t))``.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import UnitVector, t
+    >>> s = UnitVector("s")
+    >>> e = norm_measure("e", s(t) - sympy.Matrix([0, 0, 1]))
+    >>> e.kind, e.text, e.definition
+    ('norm', '‖e‖', sqrt((s_z(t) - 1)**2 + s_x(t)**2 + s_y(t)**2))
+    """
     return Measure(name, "norm", vector, text=text or f"‖{name}‖")
 
 
 def window_norm(name: str, vector, *, p, window, text: str = "") -> Measure:
-    """(∫_{t−h}^t ‖vector(ξ)‖^p dξ)^{1/p} with h = ``window``."""
+    """(∫_{t−h}^t ‖vector(ξ)‖^p dξ)^{1/p} with h = ``window``.
+
+    Examples
+    --------
+    >>> from lkverify import Vector, xi
+    >>> x = Vector("x", 2)
+    >>> window_norm("j", x(xi), p=3, window=2).definition
+    Integral((x_1(xi)**2 + x_2(xi)**2)**(3/2), (xi, t - 2, t))**(1/3)
+    """
     return Measure(name, "window_norm", vector, power=p, window=window, text=text)
 
 
 def window_integral_measure(name: str, vector, *, p, window, text: str = "") -> Measure:
-    """∫_{t−h}^t ‖vector(ξ)‖^p dξ with h = ``window`` (no root: the papers' ∫‖s(ξ) − r‖^μ dξ)."""
+    """∫_{t−h}^t ‖vector(ξ)‖^p dξ with h = ``window`` (no root: the papers' ∫‖s(ξ) − r‖^μ dξ).
+
+    Examples
+    --------
+    >>> from lkverify import Vector, xi
+    >>> x = Vector("x", 2)
+    >>> window_integral_measure("I", x(xi), p=2, window=2).definition
+    Integral(x_1(xi)**2 + x_2(xi)**2, (xi, t - 2, t))
+    """
     return Measure(name, "window_integral", vector, power=p, window=window, text=text)
 
 
 def sup_norm(name: str, vector, *, window, text: str = "") -> Measure:
-    """max over [t − h, t] of ‖vector(ξ)‖ (the papers' ‖x_t‖_τ when the vector is the state)."""
+    """max over [t − h, t] of ‖vector(ξ)‖ (the papers' ‖x_t‖_τ when the vector is the state).
+
+    Examples
+    --------
+    >>> from lkverify import Vector, xi
+    >>> m = sup_norm("m", Vector("x", 2)(xi), window=2)
+    >>> m.definition is None                     # a maximum has no closed form
+    True
+    >>> m.substitute(m.symbol)
+    Traceback (most recent call last):
+    ...
+    lkverify.errors.InputError: measure m (m) is a maximum over the window and has no closed form; bound it with a rule instead of substituting it
+    """
     return Measure(name, "sup", vector, window=window, text=text)
 
 
@@ -165,6 +215,23 @@ class Region:
 
     Only ``norm`` and ``sup`` measures are bounded directly; the others get the box
     that follows (:meth:`box`).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import Vector, t, xi
+    >>> x = Vector("x", 2)
+    >>> m = sup_norm("m", x(xi), window=2)
+    >>> n, j = norm_measure("n", x(t)), window_norm("j", x(xi), p=3, window=2)
+    >>> region = Region({m: sympy.Rational(1, 3)})
+    >>> region.box([n, j])                       # j ≤ 2^{1/3}·max‖x‖
+    {n: 1/3, j: 2**(1/3)/3}
+    >>> region.scaled(2).describe()
+    'm ≤ 2/3'
+    >>> Region({j: 1})
+    Traceback (most recent call last):
+    ...
+    lkverify.errors.InputError: region: bound a norm at t or a sup over the window, got window_norm j; its bound follows from the sup of the same vector
     """
 
     bounds: Mapping

@@ -70,6 +70,19 @@ class QuadraticForms:
     ``c_k ≥ 0``, ``hi_k − lo_k ≥ 0`` and the matrices G, H_k positive semidefinite — each
     side condition decided exactly.  Unit vectors and frames are not allowed (their
     components are not independent), nor are non-polynomial terms.
+
+    Examples
+    --------
+    >>> from lkverify import Equation, Functional, Parameters, System, Term, Vector, t
+    >>> P = Parameters(); a = P.scalar("a", positive=True, default=2)
+    >>> x = Vector("x", 1)
+    >>> sys_ = System([Equation(x, [Term(-a * x(t)[0])])], parameters=P)
+    >>> V = Functional([Term(x(t)[0] ** 2 / 2)])
+    >>> step = BoundClaim("V̇ ≤ −x²", V, sys_, lhs="Vdot", rhs=-x(t)[0] ** 2, rule=QuadraticForms())
+    >>> step.check(P.resolve({})).rule                     # V̇ = −2x²: slack x² ⪰ 0
+    'quadratic forms and nonnegative window integrals'
+    >>> step.check(P.resolve({})).status.value
+    'exact'
     """
 
     name: str = "quadratic forms and nonnegative window integrals"
@@ -90,6 +103,20 @@ class StepResult:
         For ``failed``: state values that violate the step and the violation there.
     slack : sympy.Expr or None
         ``rhs − lhs`` (``≤``) or ``lhs − rhs`` (``≥``), exact.
+
+    Examples
+    --------
+    >>> from lkverify import Equation, Functional, Parameters, System, Term, Vector, t
+    >>> P = Parameters(); a = P.scalar("a", positive=True, default=2)
+    >>> x = Vector("x", 1)
+    >>> sys_ = System([Equation(x, [Term(-a * x(t)[0])])], parameters=P)
+    >>> V = Functional([Term(x(t)[0] ** 2 / 2)])
+    >>> step = BoundClaim("V̇ ≤ −x²", V, sys_, lhs="Vdot", rhs=-x(t)[0] ** 2)
+    >>> r = step.check(P.resolve({"a": "1/2"}))            # V̇ = −x²/2: slack −x²/2
+    >>> r.status.value, r.slack, r.witness["slack"]
+    ('failed', -x_1(t)**2/2, '-1/2')
+    >>> r.to_result().kind.value
+    'bound'
     """
 
     name: str
@@ -125,6 +152,23 @@ class BoundClaim:
         ``"decrease"``: V̇ ≤ −ψ with ψ a positive definite form.  The verdict uses these.
     rule : QuadraticForms
         The checked rule that justifies the step.
+
+    Examples
+    --------
+    >>> from lkverify import Equation, Functional, Parameters, System, Term, Vector, t
+    >>> P = Parameters(); a = P.scalar("a", positive=True, default=2)
+    >>> x = Vector("x", 1)
+    >>> sys_ = System([Equation(x, [Term(-a * x(t)[0])])], parameters=P)
+    >>> V = Functional([Term(x(t)[0] ** 2 / 2)])
+    >>> step = BoundClaim("V̇ ≤ −x²", V, sys_, lhs="Vdot", rhs=-x(t)[0] ** 2, role="decrease")
+    >>> step.check(P.resolve({})).status.value             # at a = 2, V̇ = −2x² ≤ −x²
+    'exact'
+    >>> step.check(P.resolve({"a": "1/2"})).detail
+    "refuted exactly: at x_1(t) = 1 the slack's point part is -1/2 < 0 (and the window integrals can be made as small as wanted)"
+    >>> BoundClaim("bad", V, sys_, lhs="V", relation="<")
+    Traceback (most recent call last):
+    ...
+    lkverify.errors.InputError: bound step bad: relation: expected '<=' or '>=', got '<'
     """
 
     name: str
@@ -340,6 +384,17 @@ def quadratic_upper_bound(functional: Functional, system: System, values: Mappin
     quadratic forms of the state: then ``V ≤ (‖G‖ + Σ |c_k| w_k ‖H_k‖)·‖x_t‖²`` with
     ‖x_t‖ the largest ‖x(s)‖ over the window, and each norm bounded by the sum of the
     absolute entries (exact rationals).
+
+    Examples
+    --------
+    >>> from lkverify import Equation, Functional, Parameters, System, Term, Vector, t, window_integral, xi
+    >>> P = Parameters(); tau = P.delay("tau", default=1)
+    >>> x = Vector("x", 1)
+    >>> sys_ = System([Equation(x, [Term(-x(t)[0])])], parameters=P)
+    >>> V = Functional([Term(x(t)[0] ** 2 / 2), Term(window_integral(x(xi)[0] ** 2, tau))])
+    >>> r = quadratic_upper_bound(V, sys_, P.resolve({}))
+    >>> r.status.value, r.detail.split(" (")[0]            # 1/2 + 1·1 (window length τ = 1)
+    ('exact', 'V ≤ 3/2·‖x_t‖²')
     """
     name, rule = "V ≤ U(‖x_t‖)", "quadratic forms and window integrals (structural)"
     if any(s.unit or s.frame is not None for s in system.states):

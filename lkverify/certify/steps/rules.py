@@ -71,7 +71,22 @@ TEMPLATE_ENCLOSURE = "taylor"
 # -- context --------------------------------------------------------------------------------
 @dataclasses.dataclass
 class Context:
-    """What a rule needs: the system, the parameter values, the measures by name, the region."""
+    """What a rule needs: the system, the parameter values, the measures by name, the region.
+
+    Examples
+    --------
+    >>> from lkverify import Equation, Parameters, System, Term, UnitVector, t
+    >>> from lkverify.certify.steps.measures import norm_measure
+    >>> P = Parameters(); s = UnitVector("s")
+    >>> sys_ = System([Equation(s, [Term(0 * s(t))])], parameters=P)
+    >>> ctx = Context(sys_, P.resolve({}), {"e": norm_measure("e", s(t))})
+    >>> ctx.zero(s(t).dot(s(t)) - 1), ctx.zero(s(t)[0])     # exact modulo ‖s‖ = 1
+    (True, False)
+    >>> ctx.measure("q")
+    Traceback (most recent call last):
+    ...
+    lkverify.errors.InputError: unknown measure 'q': expected one of e; declare it with the step's measures
+    """
 
     system: object
     values: Mapping
@@ -306,7 +321,18 @@ class Norm:
 
 
 def measured(measure: Measure, *, at=None) -> Norm:
-    """‖v‖ = the measure, for its own vector (``at=xi``: pointwise inside a window integral)."""
+    """‖v‖ = the measure, for its own vector (``at=xi``: pointwise inside a window integral).
+
+    Examples
+    --------
+    >>> from lkverify import Vector, t, xi
+    >>> from lkverify.certify.steps.measures import norm_measure, window_norm
+    >>> x = Vector("x", 2)
+    >>> measured(norm_measure("n", x(t))).bound                    # ‖x(t)‖ = n
+    n
+    >>> measured(window_norm("j", x(xi), p=3, window=1), at=xi).bound   # ‖x(ξ)‖ inside a window integral
+    j_xi
+    """
     if measure.kind == "norm" and at is None:
         return Norm(f"{measure.text} = {measure.name}", measure.vector, measure.symbol)
     if measure.kind == "sup":
@@ -316,19 +342,62 @@ def measured(measure: Measure, *, at=None) -> Norm:
 
 
 def unit(vector) -> Norm:
-    """‖u‖ = 1 for a unit state or a unit parameter vector (checked where it is used)."""
+    """‖u‖ = 1 for a unit state or a unit parameter vector (checked where it is used).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import Equation, Parameters, System, Term, UnitVector, Vector, cross, t
+    >>> P = Parameters(); s, omega = UnitVector("s"), Vector("omega")
+    >>> sys_ = System([Equation(omega, [Term(-omega(t))]), Equation(s, [Term(-cross(omega(t), s(t)))])], parameters=P)
+    >>> ctx = Context(sys_, P.resolve({}), {})
+    >>> CauchySchwarz(s(t), s(t), (unit(s(t)), unit(s(t)))).apply(s(t).dot(s(t)), "upper", ctx).bound
+    1
+    >>> CauchySchwarz(omega(t), s(t), (unit(omega(t)), unit(s(t)))).apply(omega(t).dot(s(t)), "upper", ctx).detail
+    'side condition fails: it is a unit vector: not a unit state or unit parameter'
+    """
     return Norm("unit vector", sympy.ImmutableMatrix(as_column(vector)), sympy.S.One)
 
 
 def crossed(a: Norm, b: Norm) -> Norm:
-    """‖a × b‖ ≤ ‖a‖‖b‖."""
+    """‖a × b‖ ≤ ‖a‖‖b‖.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import Equation, Parameters, System, Term, UnitVector, Vector, cross, t
+    >>> from lkverify.certify.steps.measures import norm_measure
+    >>> P = Parameters(); s, omega = UnitVector("s"), Vector("omega"); r = sympy.Matrix([0, 0, 1])
+    >>> sys_ = System([Equation(omega, [Term(-omega(t))]), Equation(s, [Term(-cross(omega(t), s(t)))])], parameters=P)
+    >>> w, e = norm_measure("w", omega(t)), norm_measure("e", s(t) - r)
+    >>> ctx = Context(sys_, P.resolve({}), {"w": w, "e": e})
+    >>> nb = crossed(measured(e), unit(r))                # ‖(s − r) × r‖ = ‖s × r‖ ≤ e·1
+    >>> app = CauchySchwarz(omega(t), s(t).cross(r), (measured(w), nb)).apply(omega(t).dot(s(t).cross(r)), "upper", ctx)
+    >>> nb.bound, app.status.value, app.bound
+    (e, 'exact', e*w)
+    """
     va, vb = sympy.Matrix(a.vector), sympy.Matrix(b.vector)
     bound = None if a.bound is None or b.bound is None else a.bound * b.bound
     return Norm("‖a×b‖ ≤ ‖a‖‖b‖", sympy.ImmutableMatrix(va.cross(vb)), bound, (a, b))
 
 
 def scaled(factor, inner: Norm) -> Norm:
-    """‖c·v‖ = |c|·‖v‖ for a scalar factor c that is nonnegative (checked structurally) or constant."""
+    """‖c·v‖ = |c|·‖v‖ for a scalar factor c that is nonnegative (checked structurally) or constant.
+
+    Examples
+    --------
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
+    >>> from lkverify.certify.steps.measures import norm_measure
+    >>> P = Parameters(); x = Vector("x", 2); n = norm_measure("n", x(t))
+    >>> ctx = Context(System([Equation(x, [Term(-x(t))])], parameters=P), P.resolve({}), {"n": n})
+    >>> rule = CauchySchwarz(x(t), 2 * x(t), (measured(n), scaled(2, measured(n))))
+    >>> app = rule.apply(2 * x(t).dot(x(t)), "upper", ctx)
+    >>> app.status.value, app.bound                        # ‖2x‖ = 2‖x‖
+    ('exact', 2*n**2)
+    >>> CauchySchwarz(x(t), 2 * x(t), (measured(n), scaled(3, measured(n)))).apply(
+    ...     2 * x(t).dot(x(t)), "upper", ctx).status.value   # 3x is not the vector 2x
+    'failed'
+    """
     c = sympy.sympify(factor)
     cond = _cond(f"the factor {c} is ≥ 0", nonnegative(c) or None if not c.is_number else bool(c >= 0),
                  "" if nonnegative(c) else "not shown nonnegative")
@@ -364,6 +433,24 @@ def integral_of(pointwise: Norm, *, measure=None, power, weight=1, window=None, 
     pointwise bound B(ξ) in their pointwise norms P_i(ξ) is compared with Σ P_i^k: equal, or
     (``constant`` named) homogeneous of degree k with κ = sup B/Σ P_i^k certified
     (:class:`Homogeneous`); the bound is then max g·κ·Σ M_i.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, norm_power, t, window_integral, xi
+    >>> from lkverify.certify.steps.measures import norm_measure, window_norm
+    >>> P = Parameters(); x, y = Vector("x", 2), Vector("y", 2)
+    >>> sys_ = System([Equation(x, [Term(-x(t))]), Equation(y, [Term(-y(t))])], parameters=P)
+    >>> w, j = norm_measure("w", y(t)), window_norm("j", x(xi), p=3, window=1)
+    >>> ctx = Context(sys_, P.resolve({}), {"w": w, "j": j})
+    >>> J = window_integral(norm_power(x(xi), 1) * x(xi), 1)    # ‖∫‖x‖x‖ ≤ (∫‖x‖³)^{2/3} = j²
+    >>> pw = scaled(norm_power(x(xi), 1), measured(j, at=xi))
+    >>> holder = integral_of(pw, measure=j, power=2, holder=(sympy.Rational(3, 2), 3))
+    >>> CauchySchwarz(y(t), J, (measured(w), holder)).apply(y(t).dot(J), "upper", ctx).bound
+    j**2*w
+    >>> wrong = integral_of(pw, measure=j, power=2, holder=(2, 2))
+    >>> CauchySchwarz(y(t), J, (measured(w), wrong)).apply(y(t).dot(J), "upper", ctx).status.value
+    'failed'
     """
     if measures:
         return Norm("window integral of a sum", ("integrals", pointwise, tuple(measures), sympy.sympify(power),
@@ -591,6 +678,17 @@ class Printed(Rule):
 
     It never proves anything: the step is only decided by an adversarial witness
     (``failed``) or stays ``undecided``.
+
+    Examples
+    --------
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
+    >>> P = Parameters(); x = Vector("x", 2)
+    >>> ctx = Context(System([Equation(x, [Term(-x(t))])], parameters=P), P.resolve({}), {})
+    >>> app = Printed("Lemma 2").apply(x(t)[0] * x(t)[1], "upper", ctx)
+    >>> app.status.value, app.bound
+    ('undecided', None)
+    >>> app.detail
+    'side condition fails: a rule for the printed step (Lemma 2): the paper names none; only a witness can decide it'
     """
 
     reference: str = ""
@@ -604,7 +702,19 @@ class Printed(Rule):
 
 @dataclasses.dataclass(frozen=True)
 class Equal(Rule):
-    """The term equals the bound once the measures are replaced by their definitions (exactly)."""
+    """The term equals the bound once the measures are replaced by their definitions (exactly).
+
+    Examples
+    --------
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
+    >>> from lkverify.certify.steps.measures import norm_measure
+    >>> P = Parameters(); x = Vector("x", 2); n = norm_measure("n", x(t))
+    >>> ctx = Context(System([Equation(x, [Term(-x(t))])], parameters=P), P.resolve({}), {"n": n})
+    >>> Equal(n.symbol ** 2).apply(x(t).dot(x(t)), "upper", ctx).status.value     # ‖x‖² = n²
+    'exact'
+    >>> Equal(2 * n.symbol ** 2).apply(x(t).dot(x(t)), "upper", ctx).detail
+    'side condition fails: the term is 2*n**2 exactly: they differ'
+    """
 
     name = "equality (definition of the measures)"
     bound: object = None
@@ -618,7 +728,19 @@ class Equal(Rule):
 
 @dataclasses.dataclass(frozen=True)
 class Nonpositive(Rule):
-    """term ≤ 0 (direction "upper") or term ≥ 0 ("lower"): a signed constant times nonnegative factors."""
+    """term ≤ 0 (direction "upper") or term ≥ 0 ("lower"): a signed constant times nonnegative factors.
+
+    Examples
+    --------
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
+    >>> P = Parameters(); x = Vector("x", 2)
+    >>> ctx = Context(System([Equation(x, [Term(-x(t))])], parameters=P), P.resolve({}), {})
+    >>> app = Nonpositive().apply(-3 * x(t)[0] ** 2, "upper", ctx)
+    >>> app.status.value, app.bound
+    ('exact', 0)
+    >>> Nonpositive().apply(x(t)[0] * x(t)[1], "upper", ctx).detail
+    'side condition fails: the term is ≤ 0: x_1(t)*x_2(t) is not shown to have that sign'
+    """
 
     name = "a term of known sign dropped"
 
@@ -638,6 +760,20 @@ class Rayleigh(Rule):
     ``factor`` c may contain measures (e.g. −(a − τb)‖s − r‖^{μ−1} = −(a − τb)e^{μ−1});
     ``norm_squared`` is ‖u‖² in measures, checked exactly (modulo unit constraints, so
     ‖s × r‖² = e²(1 − e²/4) is an allowed unit-vector identity).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
+    >>> from lkverify.certify.steps.measures import norm_measure
+    >>> P = Parameters(); x = Vector("x", 2); n = norm_measure("n", x(t))
+    >>> ctx = Context(System([Equation(x, [Term(-x(t))])], parameters=P), P.resolve({}), {"n": n})
+    >>> M = sympy.Matrix([[2, 1], [1, 2]]); quad = (x(t).T * M * x(t))[0]    # eigenvalues 1, 3
+    >>> app = Rayleigh(x(t), M, eigenvalue=1, norm_squared=n.symbol ** 2).apply(quad, "lower", ctx)
+    >>> app.status.value, app.bound
+    ('exact', n**2)
+    >>> Rayleigh(x(t), M, eigenvalue=2, norm_squared=n.symbol ** 2).apply(quad, "lower", ctx).status.value
+    'failed'
     """
 
     vector: object
@@ -679,6 +815,21 @@ class CauchySchwarz(Rule):
 
     ``norms`` are the :class:`Norm` trees of u and v; ``matrix`` defaults to I
     (κ = 1).  For ``direction="lower"`` the bound is −|c|κ‖u‖‖v‖.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
+    >>> from lkverify.certify.steps.measures import norm_measure
+    >>> P = Parameters(); x = Vector("x", 2); n = norm_measure("n", x(t))
+    >>> ctx = Context(System([Equation(x, [Term(-x(t))])], parameters=P), P.resolve({}), {"n": n})
+    >>> A = sympy.Matrix([[3, 0], [0, 1]]); term = (x(t).T * A * x(t))[0]
+    >>> ok = CauchySchwarz(x(t), x(t), (measured(n), measured(n)), matrix=A, operator_norm=3).apply(term, "upper", ctx)
+    >>> ok.status.value, ok.bound
+    ('exact', 3*n**2)
+    >>> small = CauchySchwarz(x(t), x(t), (measured(n), measured(n)), matrix=A, operator_norm=2)
+    >>> small.apply(term, "upper", ctx).status.value          # ‖A‖ = 3 > 2
+    'failed'
     """
 
     u: object
@@ -727,6 +878,20 @@ class WindowWeight(Rule):
 
     With ``holder=(p, q)``: ∫ g‖v‖^k ≤ (∫ g^q)^{1/q} (∫‖v‖^{kp})^{1/p} = (∫g^q)^{1/q}·m^k
     (upper only).  ``weight`` is g (affine in ξ), ``factor`` c a constant of known sign.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, norm_power, t, window_integral, xi
+    >>> from lkverify.certify.steps.measures import window_integral_measure
+    >>> P = Parameters(); x = Vector("x", 2); I = window_integral_measure("I", x(xi), p=2, window=1)
+    >>> ctx = Context(System([Equation(x, [Term(-x(t))])], parameters=P), P.resolve({}), {"I": I})
+    >>> g = 3 + xi - t                                   # from 2 at ξ = t − 1 to 3 at ξ = t
+    >>> term = window_integral(norm_power(x(xi), 2), 1, weight=g)
+    >>> [WindowWeight("I", 2, weight=g).apply(term, d, ctx).bound for d in ("upper", "lower")]
+    [3*I, 2*I]
+    >>> WindowWeight("I", 2, weight=xi - t).apply(term, "upper", ctx).status.value   # not the term's weight
+    'failed'
     """
 
     measure: str
@@ -764,6 +929,21 @@ class Young(Rule):
     """c·x·y ≤ c(ε x^p/p + ε^{−q/p} y^q/q) for x, y ≥ 0, c ≥ 0, ε > 0, 1/p + 1/q = 1.
 
     Applied after another rule (``then=``): it rewrites that rule's bound c·x·y.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
+    >>> from lkverify.certify.steps.measures import norm_measure
+    >>> P = Parameters(); x = Vector("x", 2); y = Vector("y", 2)
+    >>> a, b = norm_measure("a", x(t)), norm_measure("b", y(t))
+    >>> sys_ = System([Equation(x, [Term(-x(t))]), Equation(y, [Term(-y(t))])], parameters=P)
+    >>> ctx = Context(sys_, P.resolve({}), {"a": a, "b": b})
+    >>> app = Young(a.symbol, b.symbol, eps=sympy.Rational(1, 2)).rewrite(4 * a.symbol * b.symbol, ctx)
+    >>> app.status.value, app.bound                     # 4ab ≤ 4(a²/4 + b²)
+    ('exact', a**2 + 4*b**2)
+    >>> Young(a.symbol, b.symbol, p=3, q=2).rewrite(4 * a.symbol * b.symbol, ctx).status.value
+    'failed'
     """
 
     x: object
@@ -881,6 +1061,22 @@ class Template(Rule):
     region lies inside the chart (2 sin(ρ_max/2) ≥ the region's bound on ‖s − r‖).
     ``name`` is the constant's name in bounds; for ``direction="lower"`` κ is the sup of
     −term/… and the bound −κ·(monomial).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import Equation, Parameters, System, Term, UnitVector, t, xi
+    >>> from lkverify.certify.steps.measures import Region, norm_measure, sup_norm
+    >>> P = Parameters(); s = UnitVector("s"); r = sympy.Matrix([0, 0, 1])
+    >>> e, m = norm_measure("e", s(t) - r), sup_norm("m", s(xi) - r, window=1)
+    >>> ctx = Context(System([Equation(s, [Term(0 * s(t))])], parameters=P), P.resolve({}), {"e": e},
+    ...               Region({m: sympy.Rational(1, 10)}))
+    >>> sxr = s(t).cross(r)                             # ‖s × r‖² = e²(1 − e²/4) ≤ κ e², κ = 1
+    >>> app = Template("kappa", {"e": 2}).apply(sxr.dot(sxr), "upper", ctx)
+    >>> app.status.value, 1 <= app.constants[0][1] < 1.001
+    ('certified', True)
+    >>> Template("kappa", {"e": 3}).apply(sxr.dot(sxr), "upper", ctx).detail
+    'side condition fails: the ratio is well defined: the term is not divisible by the stated monomial of measures'
     """
 
     constant: str

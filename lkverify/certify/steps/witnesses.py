@@ -167,6 +167,19 @@ class UnsupportedClaim(UnsupportedInput, InputError):
 
     It is both an :class:`~lkverify.errors.UnsupportedInput` and an
     :class:`~lkverify.errors.InputError`.
+
+    Examples
+    --------
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
+    >>> from lkverify.errors import UnsupportedInput
+    >>> from lkverify.certify.steps.measures import norm_measure
+    >>> P = Parameters(); x = Vector("x", 1); e = norm_measure("e", x(t))
+    >>> sys_ = System([Equation(x, [Term(-x(t)[0])])], parameters=P)
+    >>> try:
+    ...     search_witness(x(t + 1)[0], e.symbol, system=sys_, values=P.resolve({}), measures=[e], budget=1)
+    ... except UnsupportedInput as exc:               # also an InputError
+    ...     print(type(exc).__name__, exc)
+    UnsupportedClaim lhs term 'lhs': expected the state at t or at earlier times, got x_1(t + 1) (a future value)
     """
 
 
