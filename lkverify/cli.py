@@ -87,7 +87,7 @@ def _build_parser() -> argparse.ArgumentParser:
     rp = sub.add_parser("report", help="report every catalogued item at the papers' defaults (what the bare "
                         "`lkverify` does); prints progress lines on stderr, about 1 minute")
     rp.add_argument("--json", action="store_true", help="print a JSON list with one object per item: item, "
-                    "parameters, results (kind, name, status, value, detail) and verdict")
+                    "parameters, results (kind, name, status, value, detail), verdict and versions")
     _add_quiet(rp)
     c = sub.add_parser("check", help="check an item's hypotheses and identities")
     c.add_argument("item", help="catalogue name (aleksandrov2023.theorem3), a paper, or path/to/proof.py[::item]")
@@ -106,7 +106,8 @@ def _build_parser() -> argparse.ArgumentParser:
     s.add_argument("--history", dest="histories", action="append", default=[], metavar="STATE=VALUE",
                    help="a constant initial history for a state, e.g. omega=[0.1,0.1,0.1]")
     s.add_argument("--t-end", type=float, default=None, metavar="T", help="final time (default: the example's)")
-    s.add_argument("--plot", metavar="FILE.png", help="write the figure (paper style) to this PNG file")
+    s.add_argument("--plot", metavar="FILE.png",
+                   help="write the figure (paper style) to this file: PNG, or PDF/SVG by the suffix .pdf/.svg")
     s.add_argument("--envelope", action="store_true", help="cross-check the example's decay envelope and plot it")
     s.add_argument("--json", action="store_true", help=JSON_HELP + "; for simulate also runs (label, title, "
                    "resolved parameters, the history used and which states --history overrode), convention, "
@@ -133,7 +134,8 @@ def _build_parser() -> argparse.ArgumentParser:
                         "e.g. --set eps=0.9 for aleksandrov2017.lemma1")
     k.add_argument("--json", action="store_true", help=JSON_HELP)
     _add_quiet(k)
-    k.add_argument("--plot", metavar="FILE.png", help="write the figure (envelope, or δ(ε) for a lemma)")
+    k.add_argument("--plot", metavar="FILE.png",
+                   help="write the figure (envelope, or δ(ε) for a lemma): PNG, or PDF/SVG by the suffix")
     k.add_argument("--budget", type=_seconds, default=150.0, metavar="SECONDS",
                    help="time budget of the whole job; when spent the unfinished results are undecided "
                         "(default 150, at most 1e6)")
@@ -150,7 +152,8 @@ PROGRESS_INTERVAL_SECONDS = 1.0
 
 QUIET_HELP = "print no progress lines on stderr (by default a job longer than a few seconds prints them)"
 JSON_HELP = ("print one JSON object per item instead of the table: item, parameters, results (kind, name, status, "
-             "value, detail), verdict, and for theorems the chain of links")
+             "value, detail), verdict, for theorems the chain of links, and versions (lkverify, sympy, "
+             "python-flint, numpy, scipy, cvxpy, clarabel)")
 
 
 def _add_quiet(p) -> None:
@@ -259,17 +262,22 @@ def _set_values(sets) -> dict:
     return values
 
 
+#: the figure formats ``--plot`` writes (chosen by the file name's suffix)
+FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
+
+
 def check_output_path(path: str, *, option: str = "--plot") -> Path:
     """Refuse an output file that cannot be written, before any computing.
 
     Raises
     ------
     InputError
-        The name does not end in ``.png``, names a directory, its folder does not
+        The name does not end in ``.png``, ``.pdf`` or ``.svg``, names a directory, its folder does not
         exist or is not writable, or the file exists and is not writable.
     """
-    if not path.lower().endswith(".png"):
-        raise InputError(f"{option}: expected a file name ending in .png, got {path}")
+    if not path.lower().endswith(FIGURE_SUFFIXES):
+        raise InputError(f"{option}: expected a file name ending in {', '.join(FIGURE_SUFFIXES)} (the format "
+                         f"follows the suffix), got {path}")
     p = Path(path)
     if p.is_dir():
         raise InputError(f"{option}: expected a file name, got the directory {path}; pass e.g. {p / 'figure.png'}")
@@ -288,7 +296,9 @@ def check_output_path(path: str, *, option: str = "--plot") -> Path:
 def _emit(reports, *, json_out: bool) -> int:
     """Print reports (one JSON object, a list of them, or text tables); the worst exit code."""
     if json_out:
-        out = reports[0].to_json() if len(reports) == 1 else [r.to_json() for r in reports]
+        versions = _versions(PROOF_LIBRARIES)
+        objs = [{**r.to_json(), "versions": versions} for r in reports]
+        out = objs[0] if len(objs) == 1 else objs
         print(json.dumps(out, indent=2, ensure_ascii=False))
     else:
         print("\n\n".join(r.as_text() for r in reports))
@@ -379,12 +389,16 @@ def _simulate(args) -> int:
     return max(r.exit_code for _, r, _ in reports)
 
 
-def _versions() -> dict:
-    """The versions of lkverify and of the numerical libraries a simulation ran on."""
+#: the libraries a check or a certificate rests on (their versions go into --json)
+PROOF_LIBRARIES = ("lkverify", "sympy", "python-flint", "numpy", "scipy", "cvxpy", "clarabel")
+
+
+def _versions(names=("lkverify", "numpy", "scipy", "sympy")) -> dict:
+    """The versions of lkverify and of the libraries a job ran on (a simulation: numpy, scipy, sympy)."""
     from importlib import metadata
 
     out = {}
-    for name in ("lkverify", "numpy", "scipy", "sympy"):
+    for name in names:
         try:
             out[name] = metadata.version(name)
         except metadata.PackageNotFoundError:  # pragma: no cover - a source checkout without metadata
@@ -536,7 +550,8 @@ def _report(*, json_out: bool, quiet: bool = False) -> int:
         reports.append(item.run({}, progress=say))
     say(f"{len(todo)} items done", force=True)
     if json_out:
-        print(json.dumps([r.to_json() for r in reports], indent=2, ensure_ascii=False))
+        versions = _versions(PROOF_LIBRARIES)
+        print(json.dumps([{**r.to_json(), "versions": versions} for r in reports], indent=2, ensure_ascii=False))
     else:
         print("lkverify: the catalogue at the papers' defaults\n")
         print("\n\n".join(r.as_text() for r in reports))

@@ -5,8 +5,34 @@ from __future__ import annotations
 __all__ = ["InputError", "LkverifyError", "UnsupportedInput"]
 
 
-class LkverifyError(Exception):
-    """Base class of lkverify's own exceptions."""
+class _OwnNames(type):
+    """Metaclass of the exceptions: ``dir(cls)`` lists what lkverify's classes define.
+
+    ``help()`` then documents the exception (its docstring, its own attributes) without the
+    ~25 members every exception inherits from ``BaseException`` (``args``,
+    ``with_traceback``, …); instances keep them all.
+    """
+
+    def __dir__(cls):
+        names = set()
+        for base in cls.__mro__:
+            if base.__module__.startswith("lkverify"):
+                names.update(base.__dict__)
+        return sorted(names - {"__weakref__", "__dict__"})
+
+
+class LkverifyError(Exception, metaclass=_OwnNames):
+    """Base class of lkverify's own exceptions.
+
+    Examples
+    --------
+    >>> from lkverify import LkverifyError, dot
+    >>> try:
+    ...     dot([1, 2], [1, 2, 3])
+    ... except LkverifyError as exc:          # catches InputError and UnsupportedInput alike
+    ...     print(type(exc).__name__, "-", exc)
+    InputError - dot product of vectors of shapes (2, 1) and (3, 1)
+    """
 
 
 class InputError(LkverifyError, ValueError):
@@ -27,6 +53,12 @@ class InputError(LkverifyError, ValueError):
     >>> e = InputError("history of omega: expected 3 components", topic="history", example="omega=[0,0,1]")
     >>> e.topic, e.example
     ('history', 'omega=[0,0,1]')
+    >>> from lkverify import Parameters
+    >>> P = Parameters(); tau = P.delay("tau")
+    >>> P.resolve({"tau": -1})
+    Traceback (most recent call last):
+    ...
+    lkverify.errors.InputError: tau: expected tau > 0 (a delay must be positive), got tau=-1
     """
 
     def __init__(self, message: str = "", *, topic: str | None = None, example: str | None = None):
@@ -39,4 +71,15 @@ class UnsupportedInput(LkverifyError, ValueError):
     """Input lkverify cannot handle (yet): a model, an expression or an option outside what it supports.
 
     Never reported as ``failed``: nothing was refuted.  The message says what is supported.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify.symbolic import Canonicalizer
+    >>> Canonicalizer().normal_expr(sympy.Eq(sympy.Symbol("a"), 1))
+    Traceback (most recent call last):
+    ...
+    lkverify.errors.UnsupportedInput: cannot put Equality in normal form: Eq(a, 1); identities support polynomial operations, powers, integrals and function values
+    >>> issubclass(UnsupportedInput, ValueError)    # callers catching ValueError see it too
+    True
     """

@@ -29,7 +29,7 @@ import sys
 import threading
 import time
 
-from .errors import InputError
+from .errors import InputError, _OwnNames
 
 __all__ = ["Accuracy", "Budget", "BudgetExceeded", "Deadline", "MAX_BUDGET_SECONDS", "TIMER_CAP_SECONDS", "RETRY_SECONDS"]
 
@@ -44,8 +44,27 @@ _active: list = []          # enforced deadlines, outermost first (main thread o
 _saved_handler = [None]     # the SIGALRM handler before the outermost enforced block
 
 
-class BudgetExceeded(Exception):
-    """The time budget ran out; the result is ``undecided``."""
+class BudgetExceeded(Exception, metaclass=_OwnNames):
+    """The time budget ran out; the result is ``undecided``.
+
+    Examples
+    --------
+    >>> import time
+    >>> d = Deadline(1e-6); time.sleep(0.001)
+    >>> d.check()
+    Traceback (most recent call last):
+    ...
+    lkverify.options.BudgetExceeded: time budget of 1e-06 s exhausted
+
+    The checkers catch it and report ``undecided``:
+
+    >>> from lkverify import Term, UnitVector, t
+    >>> from lkverify.symbolic import check_identity
+    >>> s = UnitVector("s")
+    >>> r = check_identity([Term(s(t)[0])], [Term(s(t)[0])], states=[s], budget=1e-6)
+    >>> str(r.status), r.detail
+    ('undecided', 'time budget of 1e-06 s exhausted before the check finished')
+    """
 
 
 class Deadline:

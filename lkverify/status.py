@@ -1,7 +1,7 @@
 """The status vocabulary: how sure lkverify is of a result, and the one exactness policy.
 
-Every result lkverify prints carries exactly one of these statuses; see the
-table in the design card.  Only ``EXACT`` and ``CERTIFIED`` are proofs.
+Every result lkverify prints carries exactly one of these statuses (the members of
+:class:`Status`, each documented there).  Only ``EXACT`` and ``CERTIFIED`` are proofs.
 
 The exactness policy (every checker follows it; this is where it is written down):
 
@@ -36,7 +36,20 @@ import enum
 __all__ = ["Label", "Status"]
 
 
-class Label(enum.Enum):
+class _LabelType(enum.EnumType):
+    """Metaclass of :class:`Label`: ``dir(cls)`` without the container protocol of ``EnumType``.
+
+    ``help()`` then shows a label enum's members and docstring, not ``__contains__``,
+    ``__getitem__``, ``__iter__``, ``__len__`` and ``__members__`` (which still work).
+    """
+
+    _HIDDEN = frozenset({"__contains__", "__getitem__", "__iter__", "__len__", "__members__"})
+
+    def __dir__(cls):
+        return [n for n in super().__dir__() if n not in _LabelType._HIDDEN]
+
+
+class Label(enum.Enum, metaclass=_LabelType):
     """An enum whose members stand for their string values.
 
     A member equals its value, hashes like it and prints as it, so reports and JSON can
@@ -63,6 +76,16 @@ class Label(enum.Enum):
 
 class Status(Label):
     """How a result was obtained.
+
+    ============  ==================================================================================
+    ``exact``     proved symbolically (an identity reduced to 0, modulo stated constraints such as
+                  ‖s‖ = 1)
+    ``certified`` proved with outward-rounded interval arithmetic on a stated region
+    ``estimated`` a sampled or optimised value: for a supremum a lower bound, not a proof
+    ``simulated`` observed along numerical trajectories
+    ``failed``    refuted, with the counterexample (point, term or trajectory)
+    ``undecided`` budget exhausted (time, boxes, simplification): never silently upgraded
+    ============  ==================================================================================
 
     Examples
     --------

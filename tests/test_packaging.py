@@ -26,3 +26,34 @@ def test_every_package_is_listed_in_pyproject():
     listed = set(config["tool"]["setuptools"]["packages"])
     assert _packages_in_tree() - listed == set()
     assert listed - _packages_in_tree() == set()
+
+
+def test_help_of_the_package_has_no_inherited_builtin_noise():
+    """help(lkverify) documents lkverify's names, not the members of str, BaseException or EnumType."""
+    import pydoc
+
+    import lkverify
+
+    text = pydoc.render_doc(lkverify, renderer=pydoc.plaintext)
+    assert "inherited from builtins" not in text and "inherited from enum.EnumType" not in text
+    assert "casefold" not in text and "with_traceback" not in text
+    for name in ("Status", "InputError", "BudgetExceeded"):
+        assert f"class {name}" in text
+    # the hidden members still work
+    assert len(lkverify.Status) == 6 and lkverify.Status["EXACT"] is lkverify.Status.EXACT
+    assert lkverify.InputError("x").with_traceback(None).args == ("x",)
+
+
+def test_every_public_name_has_a_doctest_example():
+    import importlib
+    import inspect
+
+    missing = []
+    for module in ("lkverify", "lkverify.declare", "lkverify.symbolic", "lkverify.certify", "lkverify.certify.steps",
+                   "lkverify.certify.intervals", "lkverify.simulate", "lkverify.catalogue", "lkverify.report"):
+        mod = importlib.import_module(module)
+        for name in mod.__all__:
+            obj = getattr(mod, name)
+            if (inspect.isclass(obj) or inspect.isfunction(obj)) and ">>>" not in (inspect.getdoc(obj) or ""):
+                missing.append(f"{module}.{name}")
+    assert missing == []

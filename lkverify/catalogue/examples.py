@@ -56,6 +56,23 @@ class Example(Item):
         The figure shows [0, plot_until] (the paper's horizon); claims use the whole run.
     step : StepControl
         Tolerances and step limits of every run.
+
+    Examples
+    --------
+    x' = −a x(t − τ) from x ≡ 1, with the claim that it converges:
+
+    >>> from lkverify import Equation, Parameters, Series, System, Term, Vector, t
+    >>> from lkverify.simulate import Converges, Run
+    >>> P = Parameters(); a = P.scalar("a", positive=True, default=1); tau = P.delay("tau", default=1)
+    >>> x = Vector("x", 1); system = System([Equation(x, [Term(-a * x(t - tau)[0])])], parameters=P)
+    >>> ex = Example("user.decay", runs=[Run("x ≡ 1", system, {"a": "1/2"}, {"x": [1]})], t_end=40,
+    ...              series=[Series("x", lambda S: S["x"][:, 0])], distance=lambda S: abs(S["x"][:, 0]),
+    ...              claims=[Converges("x ≡ 1", tol=1e-3)], samples=401)
+    >>> report = ex.run()
+    >>> [(r.name, str(r.status)) for r in report.results]
+    [('run x ≡ 1', 'simulated'), ('x ≡ 1: converges', 'simulated')]
+    >>> report.holds
+    True
     """
 
     def __init__(self, name: str, *, runs: Sequence[Run], t_end: float, series: Sequence[Series],
@@ -207,36 +224,49 @@ class Example(Item):
 
     # -- figures ---------------------------------------------------------------------------
     def plot(self, trajectories: Mapping[str, Trajectory], path, *, envelope: bool = False) -> None:
-        """Write a PNG in the paper's style: each plotted series against t, one panel per run."""
+        """Write the figure (PNG, or PDF/SVG by the suffix of ``path``): each series against t, a panel per run.
+
+        The shared style of the catalogue's figures: the whole simulated interval (the paper's
+        window, ``plot_until``, shaded), mathtext labels, legends outside the axes, and with
+        ``envelope=True`` a log-scale panel of the envelope against the trajectory.
+        """
         from matplotlib.figure import Figure  # no pyplot: the backend (and a notebook's inline one) is left alone
+
+        from ..simulate.figures import _tex
 
         show_env = envelope and self.envelope is not None
         n = len(trajectories) + (1 if show_env else 0)
-        fig = Figure(figsize=(7.5, 3.2 * n))
-        axes = fig.subplots(n, 1, squeeze=False)
-        for ax, (label, tr) in zip(axes[:, 0], trajectories.items()):
-            k = len(tr.t) if self.plot_until is None else int(np.searchsorted(tr.t, self.plot_until, side="right"))
+        fig = Figure(figsize=(9.0, 3.0 * n), layout="constrained")
+        axes = fig.subplots(n, 1, squeeze=False)[:, 0]
+        title = self.title or self.qualified_name
+        fig.suptitle(_tex(title), fontsize=10)
+        for ax, (label, tr) in zip(axes, trajectories.items()):
             for s in self.series:
-                ax.plot(tr.t[:k], np.asarray(along(s.fn, tr.states, tr.values))[:k], lw=1.2, label=s.label)
-            title = self.title or self.qualified_name
-            ax.set_title(title if label == title else f"{title}\n{label}", fontsize=10)
-            ax.set_xlabel("t")
-            ax.set_ylabel(self.ylabel)
+                ax.plot(tr.t, np.asarray(along(s.fn, tr.states, tr.values), dtype=float), lw=1.2, label=_tex(s.label))
+            T = float(tr.t[-1])
+            if self.plot_until is not None and float(self.plot_until) < T:
+                ax.axvspan(float(tr.t[0]), float(self.plot_until), color="0.85", alpha=0.5, lw=0,
+                           label=f"the paper's window t ≤ {float(self.plot_until):g}")
+            ax.set_title(("" if label == title else _tex(label) + ": ") + f"t ∈ [{float(tr.t[0]):g}, {T:g}]",
+                         fontsize=9)
+            ax.set_xlabel("$t$")
+            ax.set_ylabel(_tex(self.ylabel))
             if self.logy:
                 ax.set_yscale("log")
-            ax.grid(alpha=0.3)
-            ax.legend(fontsize=8, loc="best")
+            ax.grid(alpha=0.3, which="both")
+            ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
         if show_env:
             e = self.envelope
             tr = trajectories[e.run]
             run = next(r for r in self.runs if r.label == e.run)
             chi = float(e.chi(run))
-            ax = axes[-1, 0]
-            ax.semilogy(tr.t, np.asarray(along(e.quantity.fn, tr.states, tr.values)), lw=1.2, label=e.quantity.label)
-            ax.semilogy(tr.t, np.asarray(e.bound(tr.t, chi)), "--", lw=1.2, label=e.label)
-            ax.set_title(f"envelope vs trajectory (‖χ‖_τ = {chi:.4g})", fontsize=10)
-            ax.set_xlabel("t")
+            ax = axes[-1]
+            q = np.asarray(along(e.quantity.fn, tr.states, tr.values), dtype=float)
+            ax.semilogy(tr.t, np.maximum(q, 1e-300), lw=1.2, label=_tex(e.quantity.label) + " (trajectory)")
+            ax.semilogy(tr.t, np.asarray(e.bound(tr.t, chi), dtype=float), "--", lw=1.2, label="envelope")
+            ax.set_title(_tex(e.label) + rf",  $\|\chi\|_\tau = {chi:.4g}$", fontsize=9)
+            ax.set_xlabel("$t$")
+            ax.set_ylabel(_tex(e.quantity.label))
             ax.grid(alpha=0.3, which="both")
-            ax.legend(fontsize=8)
-        fig.tight_layout()
-        fig.savefig(path, dpi=120)
+            ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
+        fig.savefig(path, dpi=110)

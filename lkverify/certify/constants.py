@@ -44,6 +44,16 @@ class Template:
     ``expr`` is a function of the checked parameter values returning the SymPy
     expression whose supremum is the best constant (the ratio lhs/template
     written without the removable singularity), and ``box`` the chart's box.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify.certify.bounds import sup_bound
+    >>> x = sympy.Symbol("x")
+    >>> tpl = Template("c", "sup x(1 − x)", expr=lambda values: x * (1 - x), box=lambda values: {x: (0, 1)})
+    >>> res = sup_bound(tpl.expr({}), tpl.box({}))          # what the job certifies for it
+    >>> res.status.value, res.lower, res.certified <= 0.26
+    ('certified', 0.25, True)
     """
 
     name: str
@@ -165,6 +175,30 @@ class ConstantsJob:
         How the job spends its budget.
     steps : bool, default False
         The model checks the proof's bound steps first (see ``model``).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify.certify.decay import DecayModel
+    >>> x = sympy.Symbol("x"); w, e = sympy.symbols("w e", nonnegative=True)
+    >>> tpl = Template("c", "sup x(1 − x)", expr=lambda v: x * (1 - x), box=lambda v: {x: (0, 1)})
+    >>> def model(values, consts):                      # build(free) → DecayModel with c certified
+    ...     return lambda p: DecayModel("toy", (w, e), {w: 1, e: 1}, w**2 + e**2, w**2 + e**2,
+    ...                                 -p["a"] * (1 - consts["c"]) * (w**3 + e**3), sympy.Rational(3, 2),
+    ...                                 (w, e), {}, {"d1": e, "d2": w})
+    >>> goals = {"rate": lambda est: -est["c_tilde"], "size": lambda est: -est["delta_tilde"]}
+    >>> job = ConstantsJob([tpl], model, {"a": (1, 2)}, goals,
+    ...                    applies=lambda values: "needs b < 1" if values.get("b", 0) >= 1 else None)
+    >>> job.goals
+    ['rate', 'size']
+    >>> job.run("toy", {"b": 2}, {})                    # checked before any computation
+    Traceback (most recent call last):
+    ...
+    lkverify.errors.InputError: toy: needs b < 1
+    >>> job.run("toy", {}, {}, goal="speed")
+    Traceback (most recent call last):
+    ...
+    lkverify.errors.InputError: goal: expected one of rate, size, got speed; pass one of them
     """
 
     templates: Sequence[Template]
@@ -409,9 +443,14 @@ def _plot_envelopes(extra: dict, path, *, values=None, simulate_fn=None) -> None
         lhs = quantity.get(env.name) or _ENVELOPE_QUANTITY.get(env.name, f"bounded quantity (${env.name}$)")
         for frac in (1.0, 0.5, 0.1):
             ax.loglog(tt + 1, env(tt, frac * dt), label=rf"envelope, $\|\chi\|_\tau = {frac:g}\,\tilde\delta$")
-        for label, (t_, q) in extra.get("trajectories", {}).get(env.name, {}).items():
-            ax.loglog(t_ + 1, q, ":", lw=1, label=str(label).replace("‖χ‖_τ", r"$\|\chi\|_\tau$")
-                      .replace("δ̃", r"$\tilde\delta$").replace(" δ)", r" $\tilde\delta$)"))
+        for label, curve in extra.get("trajectories", {}).get(env.name, {}).items():
+            t_, q = curve[0], curve[1]
+            text = (str(label).replace("‖χ‖_τ", r"$\|\chi\|_\tau$").replace("δ̃", r"$\tilde\delta$")
+                    .replace(" δ)", r" $\tilde\delta$)"))
+            line, = ax.loglog(t_ + 1, np.maximum(q, 1e-300), ":", lw=1.4, label=text)
+            if len(curve) > 2:  # the sample's ‖χ‖_τ: its own envelope, which it must stay below
+                ax.loglog(tt + 1, env(tt, curve[2]), "--", lw=0.9, color=line.get_color(),
+                          label="its envelope")
         ax.set_title(_envelope_tex(env, lhs) + rf"   ($\tilde\delta = {dt:.3g}$)", fontsize=9)
         ax.set_xlabel(r"$1 + t - t_0$")
         ax.set_ylabel(lhs)

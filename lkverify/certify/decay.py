@@ -94,6 +94,21 @@ class DecayModel:
         Name of the rate constant (``"d3"``).
     derivation : str
         How L, U and W follow from the exact V̇ (shown in reports).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> w, e = sympy.symbols("w e", nonnegative=True)
+    >>> a = sympy.Symbol("a", positive=True)
+    >>> Q = w**2 + e**2
+    >>> m = DecayModel("toy", (w, e), {w: sympy.Rational(1, 2), e: sympy.Rational(1, 2)}, Q, Q, -a * (w**3 + e**3),
+    ...                sympy.Rational(3, 2), (w, e), {}, {"d1": e, "d2": w})
+    >>> m.at({a: 2}).vdot
+    -2*e**3 - 2*w**3
+    >>> DecayModel("bad", (w, e), {w: 1}, Q, Q, -w**3, sympy.Rational(3, 2), (w,), {}, {"d1": e})
+    Traceback (most recent call last):
+    ...
+    lkverify.errors.InputError: DecayModel bad: region: expected an upper bound for every variable, got none for e
     """
 
     name: str
@@ -138,7 +153,18 @@ class DecayModel:
 
 @dataclasses.dataclass(frozen=True)
 class Envelope:
-    """x(t) ≤ d‖χ‖ (1 + κ‖χ‖^{2(p−1)} H(t))^{−1/(2(p−1))}, or d‖χ‖ e^{−κH(t)/2} for p = 1; H(t) = t − t0 or ∫h."""
+    """x(t) ≤ d‖χ‖ (1 + κ‖χ‖^{2(p−1)} H(t))^{−1/(2(p−1))}, or d‖χ‖ e^{−κH(t)/2} for p = 1; H(t) = t − t0 or ∫h.
+
+    Examples
+    --------
+    >>> env = Envelope("d1", d=2.0, kappa=0.5, p=1.5)
+    >>> env.text()
+    'd1(t) ≤ 2‖χ‖ (1 + 0.5‖χ‖(t − t0))^(−1)'
+    >>> float(env(2.0, 1.0))                           # 2·1·(1 + 0.5·1·2)^(−1)
+    1.0
+    >>> Envelope("d1", d=2.0, kappa=0.5, p=1).text()  # p = 1: exponential decay
+    'd1(t) ≤ 2‖χ‖ exp(−0.25(t − t0))'
+    """
 
     name: str
     d: float
@@ -162,7 +188,24 @@ class Envelope:
 
 @dataclasses.dataclass(frozen=True)
 class DecayCertificate:
-    """What :func:`certify_decay` proved (or failed to)."""
+    """What :func:`certify_decay` proved (or failed to).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify.options import Budget
+    >>> w, e = sympy.symbols("w e", nonnegative=True)
+    >>> half, Q = sympy.Rational(1, 2), w**2 + e**2
+    >>> m = DecayModel("toy", (w, e), {w: half, e: half}, Q, Q, -w**3 - e**3, sympy.Rational(3, 2),
+    ...                (w, e), {}, {"d1": e, "d2": w})
+    >>> cert = certify_decay(m, c_tilde=sympy.Rational(4, 5), delta_tilde=sympy.Rational(1, 4),   # c̃ > 1/√2
+    ...                      lower_coefficients={e: sympy.Rational(9, 10), w: sympy.Rational(9, 10)},
+    ...                      budget=Budget(seconds=30))
+    >>> cert.status, cert.detail
+    (<Status.FAILED: 'failed'>, 'W + c̃U^p ≤ 0 on w = 1/2: failed; W + c̃U^p ≤ 0 on e = 1/2: failed')
+    >>> cert.counterexamples[0]                        # at w = e = 1/2: W/U^{3/2} = −1/√2
+    ('rate', {'w': 0.5, 'e': 0.5})
+    """
 
     status: Status
     constants: dict  # name → float (upper bounds for d_v, C0; lower bounds for l_v, c̃, the rate, δ̃)
@@ -505,11 +548,14 @@ class _FastEstimator:
                 x[i] = zi
             return float(fn(x))
 
+        z0 = [start[i] for i in free]
         with warnings.catch_warnings(), np.errstate(all="ignore"):
             warnings.simplefilter("ignore")
-            res = minimize(g, [start[i] for i in free], method="L-BFGS-B", bounds=[(0.0, his[i]) for i in free])
-            z0 = [start[i] for i in free]
-            best, zb = (float(res.fun), list(res.x)) if float(res.fun) < g(z0) else (g(z0), z0)
+            if not free:  # one variable: the face is a single point, nothing to minimise
+                best, zb = g(z0), z0
+            else:
+                res = minimize(g, z0, method="L-BFGS-B", bounds=[(0.0, his[i]) for i in free])
+                best, zb = (float(res.fun), list(res.x)) if float(res.fun) < g(z0) else (g(z0), z0)
         if not np.isfinite(best):
             best, zb = g(z0), z0
         point = [0.0] * n
@@ -529,9 +575,10 @@ class _FastEstimator:
         for k in range(n):
             axes = [self.grid * his[i] for i in range(n) if i != k]
             mesh = np.meshgrid(*axes, indexing="ij")
+            shape = mesh[0].shape if mesh else (1,)  # one variable: the face is the single point x = h
             pts, it = [], iter(mesh)
             for i in range(n):
-                pts.append(np.full(mesh[0].shape, his[k]) if i == k else next(it))
+                pts.append(np.full(shape, his[k]) if i == k else next(it))
             faces.append([x.ravel() for x in pts])
         X = [np.concatenate([f[i] for f in faces]) for i in range(n)]
         if self.extra:  # counterexample points of earlier attempts, kept inside the region box
@@ -661,6 +708,19 @@ def search_parameters(build: Callable[[Mapping], DecayModel], bounds_: Mapping[s
     -------
     (dict, dict or None)
         The parameters, and the estimate there (None when no feasible point was found).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> w, e = sympy.symbols("w e", nonnegative=True)
+    >>> Q, half = w**2 + e**2, sympy.Rational(1, 2)
+    >>> def build(p):                                  # W = −a(w³ + e³): c̃ = a/√2 grows with a
+    ...     return DecayModel("toy", (w, e), {w: half, e: half}, Q, Q, -p["a"] * (w**3 + e**3),
+    ...                       sympy.Rational(3, 2), (w, e), {}, {"d1": e, "d2": w})
+    >>> params, est = search_parameters(build, {"a": (0.5, 2)}, objective=lambda est: -est["c_tilde"],
+    ...                                 maxiter=10, popsize=5, grid=9)
+    >>> round(float(params["a"]), 2), round(est["c_tilde"], 3)
+    (2.0, 1.414)
     """
     from scipy.optimize import differential_evolution
 

@@ -122,6 +122,19 @@ class MatrixHypothesis:
     otherwise; the margin is a lower bound of λ_min (:func:`lkverify.certify.matrices.matrix_positive_definite`).
     Entries are never rounded or snapped: floating-point entries are taken at their
     exact binary values, and a result that rests on them is at most ``certified``.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> b = sympy.Symbol("b", real=True)
+    >>> h = MatrixHypothesis("M", sympy.Matrix([[2, b], [b, 2]]))     # M ≻ 0 iff |b| < 2
+    >>> r = h.evaluate({b: sympy.Integer(1)})
+    >>> r.status.value, r.value
+    ('exact', 1.0)
+    >>> h.evaluate({b: sympy.Integer(3)}).status.value
+    'failed'
+    >>> h.evaluate({b: sympy.sqrt(2)}).status.value          # irrational entries: arb balls
+    'certified'
     """
 
     name: str
@@ -202,7 +215,7 @@ def _prepare(expr, substitution, budget, what: str):
             value, more = _exact_floats(value)
             floats = floats | more
         exact_sub[key] = value
-    m = apply_substitution(expr, exact_sub)
+    m = sympy.sympify(apply_substitution(expr, exact_sub))
     states = sorted({str(a) for a in m.atoms(AppliedUndef)})
     free = m.free_symbols
     if states or _t in free:

@@ -415,7 +415,8 @@ def matrix_positive_definite(M, *, name: str = "M", symmetrize: bool = False, se
         raise InputError(f"method: expected 'auto', 'exact' or 'arb', got {method!r}")
     A = _as_matrix(M, name)
     A, note = _symmetric_part(A, name, symmetrize)
-    what = f"{name} ⪰ 0" if semidefinite else f"{name} ≻ 0"
+    rel = "⪰ 0" if semidefinite else "≻ 0"
+    what = name if name.rstrip().endswith(("≻ 0", "⪰ 0", "> 0", ">= 0")) else f"{name} {rel}"
     rational = _is_rational(A)
     if method == "exact" and not rational:
         bad = next(e for e in A if not e.is_Rational)

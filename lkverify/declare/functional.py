@@ -22,12 +22,23 @@ import sympy
 
 from .symbols import t, xi, zeta
 from .terms import Term
+from ..errors import InputError
 
 __all__ = ["Functional", "window_integral", "memory_integral", "tail_integral", "outer_integrals", "split_outer"]
 
 
 def outer_integrals(expr) -> list:
-    """The integrals of ``expr`` that are not inside another integral, without repeats, in order."""
+    """The integrals of ``expr`` that are not inside another integral, without repeats, in order.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify.declare.symbols import t, xi, zeta
+    >>> f = sympy.Function("f")
+    >>> inner = sympy.Integral(f(zeta), (zeta, 0, xi))
+    >>> outer_integrals(f(t) * sympy.Integral(inner, (xi, 0, t)) + sympy.Integral(f(xi), (xi, 0, 1)) ** 2)
+    [Integral(f(xi), (xi, 0, 1)), Integral(f(zeta), (zeta, 0, xi), (xi, 0, t))]
+    """
     found = []
 
     def walk(x):
@@ -60,7 +71,6 @@ def split_outer(integral: sympy.Integral):
     InputError
         For an indefinite integral (a limit without both ends).
     """
-    from ..errors import InputError
 
     limits = integral.limits
     if any(len(limit) != 3 for limit in limits):
@@ -81,6 +91,16 @@ def window_integral(integrand, tau, *, weight=1):
     """``∫_{t-τ}^{t} weight · integrand dξ`` (componentwise for a vector integrand).
 
     ``integrand`` and ``weight`` are written in ``xi`` (and possibly ``t``).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify.declare.states import Vector
+    >>> tau, x = sympy.Symbol("tau", positive=True), Vector("x", 1)
+    >>> window_integral(x(xi)[0] ** 2, tau, weight=xi - t + tau)
+    Integral((-t + tau + xi)*x_1(xi)**2, (xi, t - tau, t))
+    >>> window_integral(Vector("w", 2)(xi), tau).T      # componentwise
+    Matrix([[Integral(w_1(xi), (xi, t - tau, t)), Integral(w_2(xi), (xi, t - tau, t))]])
     """
     if isinstance(integrand, sympy.MatrixBase):
         integrand = integrand * weight
@@ -90,12 +110,32 @@ def window_integral(integrand, tau, *, weight=1):
 
 
 def memory_integral(integrand, *, lower=0):
-    """``∫_{lower}^{t} integrand dξ``: infinite memory from the initial time (0 by default)."""
+    """``∫_{lower}^{t} integrand dξ``: infinite memory from the initial time (0 by default).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> g, x = sympy.Function("g"), sympy.Function("x")
+    >>> memory_integral(g(t - xi) * x(xi))
+    Integral(g(t - xi)*x(xi), (xi, 0, t))
+    >>> memory_integral(x(xi), lower=-1)
+    Integral(x(xi), (xi, -1, t))
+    """
     return _integrate(integrand, xi, lower, t)
 
 
 def tail_integral(kernel_of_zeta, lower):
-    """``∫_{lower}^{∞} kernel(ζ) dζ``, e.g. the tail ``∫_{t-ξ}^∞ ‖G(ζ)‖ dζ`` of paper 000's (14)."""
+    """``∫_{lower}^{∞} kernel(ζ) dζ``, e.g. the tail ``∫_{t-ξ}^∞ ‖G(ζ)‖ dζ`` of paper 000's (14).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> g = sympy.Function("g")
+    >>> tail_integral(g(zeta), t - xi)
+    Integral(g(zeta), (zeta, t - xi, oo))
+    >>> tail_integral(sympy.exp(-zeta), 0).doit()
+    1
+    """
     return _integrate(kernel_of_zeta, zeta, lower, sympy.oo)
 
 
@@ -108,6 +148,18 @@ class Functional:
         Scalar terms, each labelled as the paper prints it.
     name : str
         The paper's label, e.g. "(9)".
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify.declare.states import Vector
+    >>> tau, x = sympy.Symbol("tau", positive=True), Vector("x", 1)
+    >>> V = Functional([Term(x(t)[0] ** 2 / 2, text="x²/2"),
+    ...                 Term(window_integral(x(xi)[0] ** 2, tau), text="∫x²")], name="(9)")
+    >>> V, [term.text for term in V.terms]
+    (Functional('(9)', 2 terms), ['x²/2', '∫x²'])
+    >>> V.expr
+    x_1(t)**2/2 + Integral(x_1(xi)**2, (xi, t - tau, t))
     """
 
     def __init__(self, terms: Sequence[Term], *, name: str = ""):

@@ -12,6 +12,9 @@ import dataclasses
 import enum
 import json
 import math
+import numbers
+
+import numpy as np
 
 import sympy
 
@@ -44,7 +47,22 @@ KINDS = tuple(k.value for k in Kind)
 
 
 def jsonable(value):
-    """Convert SymPy/NumPy values to JSON-friendly ones (integers stay integers)."""
+    """Convert SymPy/NumPy values to JSON-friendly ones (integers stay integers).
+
+    Exact numbers become ints or floats, matrices nested lists, other expressions and
+    non-finite floats strings, enums their values; containers are converted item by item.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify.status import Status
+    >>> import numpy as np
+    >>> jsonable([np.int64(2), np.bool_(True), np.float64("nan")])
+    [2, True, 'nan']
+    >>> jsonable({"half": sympy.Rational(1, 2), "three": sympy.Integer(3), "k": sympy.Symbol("k"),
+    ...           "M": sympy.eye(2), "bad": float("inf"), "status": Status.EXACT, 1: (None, True)})
+    {'half': 0.5, 'three': 3, 'k': 'k', 'M': [[1, 0], [0, 1]], 'bad': 'inf', 'status': 'exact', '1': [None, True]}
+    """
     if value is None or isinstance(value, (bool, str)):
         return value
     if isinstance(value, enum.Enum):
@@ -58,17 +76,18 @@ def jsonable(value):
     if isinstance(value, sympy.Basic):
         if value.is_Integer:
             return int(value)
-        if value.is_number:
+        if value.is_number and value.is_finite:
             return float(value)
         return str(value)
-    if isinstance(value, float):
-        return value if math.isfinite(value) else str(value)
-    if isinstance(value, int):
-        return value
+    if isinstance(value, np.bool_):
+        return bool(value)
+    if isinstance(value, numbers.Integral):  # int and NumPy integers stay integers
+        return int(value)
     try:
-        return float(value)
+        x = float(value)
     except (TypeError, ValueError):
         return str(value)
+    return x if math.isfinite(x) else str(x)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -85,6 +104,22 @@ class Result:
         The number (a margin, a constant) or a structured value (term differences).
     detail : str
         One readable sentence.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify.status import Status
+    >>> r = Result("bound", "margin > 0", Status.CERTIFIED, sympy.Rational(1, 3), "margin 1/3")
+    >>> r.kind, r.to_json()
+    (<Kind.BOUND: 'bound'>, {'kind': 'bound', 'name': 'margin > 0', 'status': 'certified', 'value': 0.3333333333333333, 'detail': 'margin 1/3'})
+    >>> Result("proof", "x", Status.EXACT)
+    Traceback (most recent call last):
+        ...
+    lkverify.errors.InputError: result kind: expected one of hypothesis, identity, bound, constant, region, envelope, simulation, linear, got 'proof'
+    >>> Result("bound", "x", "exact")
+    Traceback (most recent call last):
+        ...
+    lkverify.errors.InputError: result status: expected a Status, got 'exact'
     """
 
     kind: Kind
@@ -108,7 +143,26 @@ class Result:
 
 @dataclasses.dataclass(frozen=True)
 class Report:
-    """Everything one job established about one item."""
+    """Everything one job established about one item.
+
+    It holds (exit code 0) only when no result is ``failed`` or ``undecided``.
+
+    Examples
+    --------
+    >>> from lkverify.status import Status
+    >>> rep = Report("demo", {"k": "2"}, (Result("bound", "margin", Status.CERTIFIED, 0.25, "margin > 0"),
+    ...                                   Result("identity", "Vdot", Status.UNDECIDED, None, "budget spent")),
+    ...              "undecided: Vdot")
+    >>> rep.holds, rep.exit_code, [r["status"] for r in rep.to_json()["results"]]
+    (False, 1, ['certified', 'undecided'])
+    >>> print(rep.as_text())
+    demo
+      parameters: k=2
+      kind      name    status     value  detail
+      bound     margin  certified  0.25   margin > 0
+      identity  Vdot    undecided         budget spent
+      verdict: undecided: Vdot
+    """
 
     item: str
     parameters: dict

@@ -54,7 +54,17 @@ class FromValues:
 
 
 def along(quantity, states: Mapping, values: Mapping | None = None):
-    """``quantity(states)``, binding a :class:`FromValues` quantity to ``values`` first."""
+    """``quantity(states)``, binding a :class:`FromValues` quantity to ``values`` first.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> states = {"x": np.array([[1.0], [-2.0]])}
+    >>> along(lambda s: np.abs(s["x"][:, 0]), states).tolist()          # a plain callable
+    [1.0, 2.0]
+    >>> along(FromValues(lambda v: lambda s: v["k"] * s["x"][:, 0]), states, {"k": 10}).tolist()
+    [10.0, -20.0]
+    """
     if isinstance(quantity, FromValues):
         quantity = quantity.bind(dict(values or {}))
     return quantity(states)
@@ -62,7 +72,24 @@ def along(quantity, states: Mapping, values: Mapping | None = None):
 
 @dataclasses.dataclass(frozen=True)
 class Run:
-    """One simulation of an example: a label, a system, parameter values, an initial history."""
+    """One simulation of an example: a label, a system, parameter values, an initial history.
+
+    ``values`` override the parameters' defaults for this run only; an
+    :class:`~lkverify.catalogue.examples.Example` integrates each of its runs.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from lkverify import Parameters, Vector, System, Equation, Term, t
+    >>> from lkverify.catalogue.examples import Example
+    >>> P = Parameters(); a = P.scalar("a", positive=True, default=1); tau = P.delay("tau", default=1)
+    >>> x = Vector("x", 1); sys = System([Equation(x, [Term(-a * x(t - tau)[0])])], parameters=P)
+    >>> runs = [Run("a = 1", sys, {"a": 1, "tau": "1/10"}, {"x": [1]}),
+    ...         Run("a = 1/10", sys, {"a": "1/10", "tau": "1/10"}, {"x": [1]})]
+    >>> ex = Example("demo", runs=runs, t_end=10, series=[], distance=lambda s: abs(s["x"][:, 0]), samples=201)
+    >>> [(r.name, r.status.value, r.value["converged"]) for r in ex.run().results]
+    [('run a = 1', 'simulated', True), ('run a = 1/10', 'simulated', False)]
+    """
 
     label: str
     system: System
@@ -72,7 +99,18 @@ class Run:
 
 @dataclasses.dataclass(frozen=True)
 class Series:
-    """A plotted quantity: ``fn(states)`` → array over the samples (states: name → (m, dim) array)."""
+    """A plotted quantity: ``fn(states)`` → array over the samples (states: name → (m, dim) array).
+
+    Examples
+    --------
+    >>> from lkverify import Parameters, Vector, System, Equation, Term, t
+    >>> from lkverify.simulate import simulate
+    >>> x = Vector("x", 1); sys = System([Equation(x, [Term(-x(t - 1)[0])])], parameters=Parameters())
+    >>> tr = simulate(sys, history={"x": [1]}, t_end=2.0, t_eval=[0.0, 1.0, 2.0])
+    >>> square = Series("x²", lambda s: s["x"][:, 0] ** 2)
+    >>> [round(float(v), 10) for v in along(square.fn, tr.states)]   # x = 1, 0, −1/2 at t = 0, 1, 2
+    [1.0, 0.0, 0.25]
+    """
 
     label: str
     fn: Callable
@@ -84,6 +122,23 @@ class EnvelopeSpec:
 
     ``valid_below``: the envelope is claimed only for ‖χ‖_τ below it (the estimate's region, e.g. 0.28
     for (15) as printed); a history outside it is said so in the figure.
+
+    Examples
+    --------
+    An :class:`~lkverify.catalogue.examples.Example` checks it along the named run:
+
+    >>> import numpy as np
+    >>> from lkverify import Parameters, Vector, System, Equation, Term, t
+    >>> from lkverify.catalogue.examples import Example
+    >>> P = Parameters(); a = P.scalar("a", positive=True, default=1); tau = P.delay("tau", default=1)
+    >>> x = Vector("x", 1); sys = System([Equation(x, [Term(-a * x(t - tau)[0])])], parameters=P)
+    >>> env = EnvelopeSpec("e^(−t/2)", Series("|x|", lambda s: abs(s["x"][:, 0])),
+    ...                    bound=lambda tt, chi: chi * np.exp(-tt / 2), chi=lambda run: 1.0, run="r")
+    >>> ex = Example("demo", runs=[Run("r", sys, {"tau": "1/10"}, {"x": [1]})], t_end=10, series=[],
+    ...              distance=lambda s: abs(s["x"][:, 0]), envelope=env, samples=201)
+    >>> chk = ex.check_envelope(ex.simulate())
+    >>> chk.status.value, chk.max_ratio, chk.t_max_ratio, chk.first_violation   # tight at t = 0 only
+    ('simulated', 1.0, 0.0, None)
     """
 
     label: str
@@ -96,7 +151,25 @@ class EnvelopeSpec:
 
 @dataclasses.dataclass(frozen=True)
 class RunSummary:
-    """What a run did: outcome, convergence, times to reach 1e-2 and 1e-3, final values."""
+    """What a run did: outcome, convergence, times to reach 1e-2 and 1e-3, final values.
+
+    Examples
+    --------
+    :meth:`lkverify.catalogue.examples.Example.summary` makes one from a trajectory:
+
+    >>> import numpy as np
+    >>> from lkverify import Parameters, Vector, System, Equation, Term, t
+    >>> from lkverify.catalogue.examples import Example
+    >>> P = Parameters(); a = P.scalar("a", positive=True, default=1); tau = P.delay("tau", default=1)
+    >>> x = Vector("x", 1); sys = System([Equation(x, [Term(-a * x(t - tau)[0])])], parameters=P)
+    >>> ex = Example("demo", runs=[Run("r", sys, {"tau": "1/10"}, {"x": [1]})], t_end=10,
+    ...              series=[Series("x", lambda s: s["x"][:, 0])], distance=lambda s: abs(s["x"][:, 0]), samples=201)
+    >>> s = ex.summary("r", ex.simulate()["r"])
+    >>> s.outcome, s.status.value, s.converged, s.t_1e2, s.t_1e3, s.max_distance
+    (<Outcome.SUCCESS: 'success'>, 'simulated', True, 4.15, 6.2, 1.0)
+    >>> s.to_json()["outcome"]
+    'success'
+    """
 
     label: str
     outcome: Outcome
@@ -189,7 +262,26 @@ def _tail_integral(h, T: float) -> float:
 
 # -- claims about runs --------------------------------------------------------------------------
 class RunClaim:
-    """A statement a paper makes about a run; ``check`` returns a simulation Result."""
+    """A statement a paper makes about a run; ``check`` returns a simulation Result.
+
+    A subclass sets ``name`` and implements ``check(example, trajectories)``
+    (trajectories: run label → :class:`~lkverify.simulate.runs.Trajectory`);
+    ``_res(ok, value, detail)`` makes the Result, ``simulated`` if ``ok`` else ``failed``.
+
+    Examples
+    --------
+    >>> from lkverify import Parameters, Vector, System, Equation, Term, t
+    >>> from lkverify.simulate import simulate
+    >>> class EndsPositive(RunClaim):
+    ...     name = "x ends positive"
+    ...     def check(self, example, trajectories):
+    ...         end = float(trajectories["r"].states["x"][-1, 0])
+    ...         return self._res(end > 0, end, f"x(T) = {end:.3g}")
+    >>> x = Vector("x", 1); sys = System([Equation(x, [Term(-x(t - 1)[0])])], parameters=Parameters())
+    >>> res = EndsPositive().check(None, {"r": simulate(sys, history={"x": [1]}, t_end=2.0)})
+    >>> res.kind.value, res.status.value, res.detail               # x(2) = −1/2
+    ('simulation', 'failed', 'x(T) = -0.5')
+    """
 
     name = "claim"
 
@@ -202,7 +294,26 @@ class RunClaim:
 
 @dataclasses.dataclass(frozen=True)
 class Converges(RunClaim):
-    """The distance to the equilibrium ends below ``tol`` and the run succeeded."""
+    """The distance to the equilibrium ends below ``tol`` and the run succeeded.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from lkverify import Parameters, Vector, System, Equation, Term, t
+    >>> from lkverify.catalogue.examples import Example
+    >>> P = Parameters(); a = P.scalar("a", positive=True, default=1); tau = P.delay("tau", default=1)
+    >>> x = Vector("x", 1); sys = System([Equation(x, [Term(-a * x(t - tau)[0])])], parameters=P)
+    >>> runs = [Run("fast", sys, {"a": 1, "tau": "1/10"}, {"x": [1]}),
+    ...         Run("slow", sys, {"a": "1/10", "tau": "1/10"}, {"x": [1]})]
+    >>> ex = Example("demo", runs=runs, t_end=10, series=[Series("x", lambda s: s["x"][:, 0])],
+    ...              distance=lambda s: abs(s["x"][:, 0]), samples=201)
+    >>> trs = ex.simulate()
+    >>> res = Converges("fast").check(ex, trs)
+    >>> res.status.value, res.detail
+    ('simulated', 'distance 1.4e-05 at t = 10 (need < 0.001); reaches 1e-3 at t = 6.2')
+    >>> Converges("fast", by=5).check(ex, trs).status.value, Converges("slow").check(ex, trs).status.value
+    ('failed', 'failed')
+    """
 
     run: str
     tol: float = 1e-3
@@ -228,11 +339,43 @@ class Converges(RunClaim):
 
 @dataclasses.dataclass(frozen=True)
 class DoesNotConverge(RunClaim):
-    """Over the last ``tail`` fraction of the run the distance stays above ``floor``."""
+    """Over the last ``tail`` fraction of the run the distance keeps returning above ``floor``.
+
+    The tail is cut into ``windows`` consecutive windows and in every one of them the
+    largest distance must exceed ``floor``: a trajectory that converges ends below the
+    floor for a whole window and fails.  The criterion is not the smallest distance: an
+    oscillation that does not settle may pass close to the equilibrium (with the
+    ``per-vector`` distance, max_i ‖s_i − r_i‖, the vectors of paper 001's Fig. 2 do
+    while ω is not small), and it still does not converge.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from lkverify import Parameters, Vector, System, Equation, Term, t
+    >>> from lkverify.catalogue.examples import Example
+    >>> P = Parameters(); a = P.scalar("a", positive=True, default=1); tau = P.delay("tau", default=1)
+    >>> x = Vector("x", 1); sys = System([Equation(x, [Term(-a * x(t - tau)[0])])], parameters=P)
+    >>> runs = [Run("fast", sys, {"a": 1, "tau": "1/10"}, {"x": [1]}),
+    ...         Run("slow", sys, {"a": "1/10", "tau": "1/10"}, {"x": [1]})]
+    >>> ex = Example("demo", runs=runs, t_end=10, series=[Series("x", lambda s: s["x"][:, 0])],
+    ...              distance=lambda s: abs(s["x"][:, 0]), samples=201)
+    >>> trs = ex.simulate()
+    >>> res = DoesNotConverge("slow").check(ex, trs)
+    >>> res.status.value, res.detail
+    ('simulated', 'max distance in each of 4 windows of t ∈ [7.5, 10] is at least 0.385 (need > 0.01); min distance 0.364')
+    >>> DoesNotConverge("fast").check(ex, trs).status.value
+    'failed'
+    """
 
     run: str
     floor: float = 1e-2
     tail: float = 0.25
+    windows: int = 4
+
+    def __post_init__(self):
+        if not (0 < self.tail <= 1) or int(self.windows) < 1:
+            raise InputError(f"DoesNotConverge({self.run!r}): expected 0 < tail ≤ 1 and windows ≥ 1, got "
+                             f"tail={self.tail}, windows={self.windows}")
 
     @property
     def name(self):
@@ -240,12 +383,15 @@ class DoesNotConverge(RunClaim):
 
     def check(self, example, trajectories):
         tr = trajectories[self.run]
-        d = np.asarray(along(example.distance, tr.states, tr.values))
-        k = int(len(d) * (1 - self.tail))
-        lo = float(np.min(d[k:]))
-        ok = tr.outcome is Outcome.SUCCESS and lo > self.floor
-        return self._res(ok, {"min_distance_tail": lo, "t_from": float(tr.t[k])},
-                         f"min distance over t ∈ [{tr.t[k]:.4g}, {tr.t[-1]:.4g}] is {lo:.3g} (need > {self.floor:g})")
+        d = np.asarray(along(example.distance, tr.states, tr.values), dtype=float)
+        k = min(int(len(d) * (1 - self.tail)), len(d) - 1)
+        parts = [p for p in np.array_split(d[k:], int(self.windows)) if len(p)]
+        peaks = [float(np.max(p)) for p in parts]
+        lo, low_peak = float(np.min(d[k:])), min(peaks)
+        ok = tr.outcome is Outcome.SUCCESS and low_peak > self.floor
+        return self._res(ok, {"window_maxima": peaks, "min_distance_tail": lo, "t_from": float(tr.t[k])},
+                         f"max distance in each of {len(parts)} windows of t ∈ [{tr.t[k]:.4g}, {tr.t[-1]:.4g}] is "
+                         f"at least {low_peak:.3g} (need > {self.floor:g}); min distance {lo:.3g}")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -257,6 +403,26 @@ class BoundedNotAttractive(RunClaim):
     the second half of the run; the extrapolated lower bound Ṽ(T) exp(−α̃ ∫_T^∞ h) must exceed
     ``fraction`` · Ṽ(T).  For a non-integrable h the tail is infinite and the bound is 0, so the
     claim fails, as it should for an attractive equilibrium.
+
+    Examples
+    --------
+    ``x' = −h(t) x``: with h = (1+t)⁻² the energy x² tends to e⁻² > 0; with h = 1/(1+t) to 0.
+
+    >>> from lkverify import Parameters, Vector, System, Equation, Term, t
+    >>> from lkverify.catalogue.examples import Example
+    >>> x = Vector("x", 1)
+    >>> def check(h, damping):
+    ...     sys = System([Equation(x, [Term(-h * x(t)[0])])], parameters=Parameters())
+    ...     ex = Example("demo", runs=[Run("r", sys, history={"x": [1]})], t_end=10, series=[],
+    ...                  distance=lambda s: abs(s["x"][:, 0]), samples=201)
+    ...     claim = BoundedNotAttractive("r", measure=lambda s: s["x"][:, 0] ** 2, damping=damping, bound=2)
+    ...     return claim.check(ex, ex.simulate())
+    >>> res = check((1 + t) ** -2, "(1+t)**(-2)")
+    >>> res.status.value, round(res.value["tail_integral"], 6), res.value["energy_limit_lower"] > 0.1
+    ('simulated', 0.090909, True)
+    >>> res = check(1 / (1 + t), "1/(1+t)")
+    >>> res.status.value, res.value["tail_integral"], res.value["energy_limit_lower"]
+    ('failed', inf, 0.0)
     """
 
     run: str
@@ -298,7 +464,27 @@ class BoundedNotAttractive(RunClaim):
 
 @dataclasses.dataclass(frozen=True)
 class Sensitive(RunClaim):
-    """Chaotic-looking: a perturbation of ``perturbation`` in ω's history grows to ``level`` in the plotted series."""
+    """Chaotic-looking: a perturbation of ``perturbation`` in ω's history grows to ``level`` in the plotted series.
+
+    The run must have a state named ``omega`` with a constant history: its components
+    are shifted by ``perturbation`` and the run is integrated again.
+
+    Examples
+    --------
+    ``ω' = ω(t − 1)`` is unstable: a difference of 1e-3 grows about 19-fold by t = 5.
+
+    >>> from lkverify import Parameters, Vector, System, Equation, Term, t
+    >>> from lkverify.catalogue.examples import Example
+    >>> w = Vector("omega", 1); sys = System([Equation(w, [Term(w(t - 1)[0])])], parameters=Parameters())
+    >>> ex = Example("demo", runs=[Run("r", sys, history={"omega": [1]})], t_end=5, samples=101,
+    ...              series=[Series("ω", lambda s: s["omega"][:, 0])], distance=lambda s: abs(s["omega"][:, 0]))
+    >>> trs = ex.simulate()
+    >>> res = Sensitive("r", perturbation=1e-3).check(ex, trs)
+    >>> res.status.value, round(res.value["max_separation"], 4)
+    ('simulated', 0.0192)
+    >>> Sensitive("r").check(ex, trs).detail                       # 1e-8 stays far below 1e-2
+    'histories 1e-08 apart separate to 1.92e-07 (never above 0.01)'
+    """
 
     run: str
     perturbation: float = 1e-8
@@ -329,7 +515,26 @@ class Sensitive(RunClaim):
 
 @dataclasses.dataclass(frozen=True)
 class FasterThan(RunClaim):
-    """Run ``a`` reaches ``level`` (and stays below) earlier than run ``b``."""
+    """Run ``a`` reaches ``level`` (and stays below) earlier than run ``b``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from lkverify import Parameters, Vector, System, Equation, Term, t
+    >>> from lkverify.catalogue.examples import Example
+    >>> P = Parameters(); a = P.scalar("a", positive=True, default=1); tau = P.delay("tau", default=1)
+    >>> x = Vector("x", 1); sys = System([Equation(x, [Term(-a * x(t - tau)[0])])], parameters=P)
+    >>> runs = [Run("fast", sys, {"a": 1, "tau": "1/10"}, {"x": [1]}),
+    ...         Run("slow", sys, {"a": "1/10", "tau": "1/10"}, {"x": [1]})]
+    >>> ex = Example("demo", runs=runs, t_end=10, series=[Series("x", lambda s: s["x"][:, 0])],
+    ...              distance=lambda s: abs(s["x"][:, 0]), samples=201)
+    >>> trs = ex.simulate()
+    >>> res = FasterThan("fast", "slow").check(ex, trs)
+    >>> res.status.value, res.detail
+    ('simulated', 'fast reaches 1e-2 at t = 4.15; slow does not reach 1e-2 by t = 10')
+    >>> FasterThan("slow", "fast").check(ex, trs).status.value
+    'failed'
+    """
 
     a: str
     b: str
@@ -350,7 +555,27 @@ class FasterThan(RunClaim):
 
 @dataclasses.dataclass(frozen=True)
 class SmootherThan(RunClaim):
-    """The plotted series of run ``a`` have fewer local extrema (oscillations) than those of ``b``."""
+    """The plotted series of run ``a`` have fewer local extrema (oscillations) than those of ``b``.
+
+    Examples
+    --------
+    ``x' = −a x(t − 1)`` decays monotonically for a = 1/10 (a·τ < 1/e) and oscillates for a = 1:
+
+    >>> import numpy as np
+    >>> from lkverify import Parameters, Vector, System, Equation, Term, t
+    >>> from lkverify.catalogue.examples import Example
+    >>> P = Parameters(); a = P.scalar("a", positive=True, default=1); tau = P.delay("tau", default=1)
+    >>> x = Vector("x", 1); sys = System([Equation(x, [Term(-a * x(t - tau)[0])])], parameters=P)
+    >>> runs = [Run("a = 1/10", sys, {"a": "1/10"}, {"x": [1]}), Run("a = 1", sys, {"a": 1}, {"x": [1]})]
+    >>> ex = Example("demo", runs=runs, t_end=10, series=[Series("x", lambda s: s["x"][:, 0])],
+    ...              distance=lambda s: abs(s["x"][:, 0]), samples=201)
+    >>> trs = ex.simulate()
+    >>> res = SmootherThan("a = 1/10", "a = 1").check(ex, trs)
+    >>> res.status.value, res.value
+    ('simulated', {'extrema_a': 0, 'extrema_b': 4})
+    >>> SmootherThan("a = 1", "a = 1/10").check(ex, trs).status.value
+    'failed'
+    """
 
     a: str
     b: str

@@ -77,6 +77,19 @@ class Trajectory:
     values : dict
         The run's resolved parameter values (name → checked value), for quantities along the
         run that depend on them (:class:`lkverify.simulate.experiments.FromValues`).
+
+    Examples
+    --------
+    ``x' = −x(t − 1)`` with history 1: x = 1 − t on [0, 1], then 1 − t + (t − 1)²/2.
+
+    >>> from lkverify import Parameters, Vector, System, Equation, Term, t
+    >>> P = Parameters(); a = P.scalar("a", positive=True, default=1); tau = P.delay("tau", default=1)
+    >>> x = Vector("x", 1); sys = System([Equation(x, [Term(-a * x(t - tau)[0])])], parameters=P)
+    >>> tr = simulate(sys, history={"x": [1]}, t_end=2.0)
+    >>> tr.status.value, tr.values, float(tr.t[-1])
+    ('simulated', {'a': 1, 'tau': 1}, 2.0)
+    >>> tr.at([0.5, 1.5])["x"].round(10).tolist()     # dense output between the samples
+    [[0.5], [-0.375]]
     """
 
     system_name: str
@@ -258,6 +271,17 @@ class PreparedRun:
         ``min(max_step, shortest delay)``: the largest step the run takes.
     step_cap_reason : str
         ``"shortest delay"``, the option name, or ``"none"`` (no limit).
+
+    Examples
+    --------
+    >>> from lkverify import Parameters, Vector, System, Equation, Term, t
+    >>> P = Parameters(); a = P.scalar("a", positive=True, default=1); tau = P.delay("tau", default=1)
+    >>> x = Vector("x", 1); sys = System([Equation(x, [Term(-a * x(t - tau)[0])])], parameters=P)
+    >>> prep = prepare_run(sys, history={"x": [1]}, t_end=5.0, values={"tau": "1/2"})
+    >>> prep.step_cap, prep.step_cap_reason, prep.max_step_reason, prep.compiled.lags
+    (0.5, 'shortest delay', 'max_step', (0.5,))
+    >>> prep.history(-0.3).tolist()                   # the initial history, as phi(s)
+    [1.0]
     """
 
     compiled: CompiledSystem
@@ -282,6 +306,22 @@ def prepare_run(system: System, *, history: Mapping[str, object], t_end: float,
     ------
     InputError
         With the reason (one line).
+
+    Examples
+    --------
+    >>> from lkverify import Parameters, Vector, System, Equation, Term, t
+    >>> P = Parameters(); a = P.scalar("a", positive=True, default=1); tau = P.delay("tau", default=1)
+    >>> x = Vector("x", 1); sys = System([Equation(x, [Term(-a * x(t - tau)[0])])], parameters=P)
+    >>> prepare_run(sys, history={"x": [1]}, t_end=2.0).step_cap
+    1.0
+    >>> prepare_run(sys, history={"y": [1]}, t_end=2.0)
+    Traceback (most recent call last):
+        ...
+    lkverify.errors.InputError: history for unknown state(s) y: expected one of the states x; fix the name (e.g. history x=0.1)
+    >>> prepare_run(sys, history={"x": [1]}, t_end=2.0, values={"tau": "1/10000000"})  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+        ...
+    lkverify.errors.InputError: ...needs at least 2e+07 steps (steps are at most the shortest delay 1e-07 long); expected at most 1e+07 (the step floor); shorten t_end or lengthen the delay
     """
     if not isinstance(step, StepControl):
         raise InputError(f"step: expected a StepControl, got {type(step).__name__}; "
@@ -301,7 +341,7 @@ def prepare_run(system: System, *, history: Mapping[str, object], t_end: float,
         if needed > MAX_STEPS:
             why = (f"the shortest delay {cap:g}" if cap_reason == "shortest delay"
                    else f"the largest step {cap:g}")
-            raise InputError(f"system {system.name or ''}: a run to t_end = {t_end:g} needs at least {needed:.3g} "
+            raise InputError(f"{'system ' + system.name if system.name else 'the system'}: a run to t_end = {t_end:g} needs at least {needed:.3g} "
                              f"steps (steps are at most {why} long); expected at most {MAX_STEPS:.0e} (the step "
                              f"floor); shorten t_end or lengthen the delay", topic="t_end")
     return PreparedRun(comp, phi, max_step, reason, float(cap), cap_reason)
@@ -349,6 +389,25 @@ def simulate(system: System, *, history: Mapping[str, object], t_end: float, val
     InputError
         Bad values, a coefficient not finite on the horizon, a bad history, or a run
         needing more steps than the floor allows (see :func:`prepare_run`).
+
+    Examples
+    --------
+    ``x' = −a x(t − 1)`` decays for a = 1; ``x' = +x(t − 1)`` grows and stops at the bound:
+
+    >>> from lkverify import Parameters, Vector, System, Equation, Term, t
+    >>> P = Parameters(); a = P.scalar("a", positive=True, default=1); tau = P.delay("tau", default=1)
+    >>> x = Vector("x", 1); sys = System([Equation(x, [Term(-a * x(t - tau)[0])])], parameters=P)
+    >>> tr = simulate(sys, history={"x": [1]}, t_end=1.0)
+    >>> tr.outcome.value, round(float(tr.states["x"][-1, 0]), 10) + 0.0      # x = 1 − t on [0, 1]
+    ('success', 0.0)
+    >>> grows = System([Equation(x, [Term(x(t - 1)[0])])], parameters=P)
+    >>> tr = simulate(grows, history={"x": [1]}, t_end=20.0, divergence_bound=100)
+    >>> tr.outcome.value, tr.status.value, 7 < tr.t_fail < 8
+    ('diverged', 'failed', True)
+    >>> simulate(sys, history={"x": [1]}, t_end=1.0, values={"a": -1})
+    Traceback (most recent call last):
+        ...
+    lkverify.errors.InputError: a: expected a > 0 (it must be positive), got a=-1
     """
     prep = prepare_run(system, history=history, t_end=t_end, values=values, t0=t0, step=step, integrals=integrals)
     if deadline is None and budget is not None:

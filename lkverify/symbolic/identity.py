@@ -27,11 +27,13 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 import sympy
+from sympy.core.function import AppliedUndef
 
 from ..options import BudgetExceeded, Deadline
 from .canonical import Canonicalizer
 from ..declare.parameters import Parameters
 from ..status import Status
+from ..declare.symbols import t
 from ..declare.terms import Term
 from ..errors import InputError
 from .witness import Witness, evaluate_many, make_witness, witness_constant
@@ -61,6 +63,19 @@ class TermDifference:
         claimed − derived for this group.
     value : float or None
         claimed − derived for this group at the witness.
+
+    Examples
+    --------
+    >>> from lkverify import Parameters, Term, UnitVector, t
+    >>> P = Parameters(); a = P.scalar("a", positive=True); s = UnitVector("s")
+    >>> r = check_identity([Term(a * s(t)[0], text="a s_x"), Term(s(t)[1], text="s_y")],
+    ...                    [Term(-a * s(t)[0], text="−a s_x"), Term(s(t)[1], text="s_y")],
+    ...                    states=[s], parameters=P)
+    >>> (d,) = r.differences                    # the s_y terms agree; only the s_x group differs
+    >>> d.kind, d.claimed, d.derived
+    ('sign', ('a s_x',), ('−a s_x',))
+    >>> d.message, d.difference_text
+    ('opposite sign: printed [a s_x] = −(derived [−a s_x])', '2·([a s_x]) = 2*a*s_x(t)')
     """
 
     kind: str
@@ -77,7 +92,21 @@ class TermDifference:
 
 @dataclasses.dataclass(frozen=True)
 class IdentityResult:
-    """The outcome of an identity check."""
+    """The outcome of an identity check.
+
+    Examples
+    --------
+    >>> from lkverify import Term, UnitVector, t
+    >>> s = UnitVector("s")
+    >>> r = check_identity([Term(s(t)[0] ** 2 + s(t)[1] ** 2, text="s_x² + s_y²")],
+    ...                    [Term(1 - s(t)[2] ** 2, text="1 − s_z²")], name="(7)", states=[s],
+    ...                    constraints=lambda times: [p for u in times for p in s.constraint_polynomials(u)])
+    >>> r.holds, r.numeric_points, r.differences
+    (True, 3, ())
+    >>> print(r.as_text())
+    (7): exact — the difference reduces to 0 modulo the constraints; checked numerically at 3 random witnesses first
+      ✓ confirmed: printed [s_x² + s_y²] = derived [1 − s_z²]
+    """
 
     name: str
     status: Status
@@ -151,12 +180,32 @@ def check_identity(claimed: Sequence[Term], reference: Sequence[Term], *, name: 
     Returns
     -------
     IdentityResult
+
+    Examples
+    --------
+    >>> from lkverify import Term, UnitVector, t
+    >>> s = UnitVector("s")
+    >>> lhs = [Term(s(t)[0] ** 2, text="s_x²")]
+    >>> rhs = [Term(1 - s(t)[1] ** 2 - s(t)[2] ** 2, text="1 − s_y² − s_z²")]
+    >>> unit = lambda times: [p for u in times for p in s.constraint_polynomials(u)]
+    >>> str(check_identity(lhs, rhs, states=[s], constraints=unit).status)    # reduced modulo ‖s‖ = 1
+    'exact'
+    >>> str(check_identity(lhs, rhs, states=[s]).status)    # the same constraint, taken from the unit vector
+    'exact'
+    >>> str(check_identity(lhs, rhs, states=[s], constraints=lambda times: []).status)  # none: numerically 0 only
+    'undecided'
+    >>> r = check_identity([Term(2 * s(t)[0], text="2 s_x")], [Term(s(t)[0], text="s_x")], states=[s])
+    >>> str(r.status), r.differences[0].message
+    ('failed', 'wrong coefficient: printed [2 s_x] = 2 × (derived [s_x])')
     """
     start = time.monotonic()
     deadline = Deadline(budget)
     parameters = parameters or Parameters()
     rng = np.random.default_rng(seed)
-    claimed, reference = list(claimed), list(reference)
+    if constraints is None:
+        constraints = _state_constraints(states)
+    claimed = [_with_derivatives_done(term) for term in claimed]
+    reference = [_with_derivatives_done(term) for term in reference]
     all_terms = claimed + reference
     _refuse_floats(name, claimed, reference)
     witnesses: list[Witness] = []
@@ -228,10 +277,34 @@ def _verdict(name, exact_zero, refuted, worst, rc, differences, wjson, points, s
                               differences, wjson, rc.value, points, seconds)
     if refuted:
         return IdentityResult(name, Status.FAILED,
-                              f"claimed − derived = {worst[2]:.6g} at a witness (relative {worst[0]:.2g}); "
+                              f"claimed − derived = {worst[2]:.6g} at a witness (relative {worst[0]:.2g}; "
+                              f"{worst[1].explain()}); "
                               f"{len(differences)} differing group(s) of terms",
                               differences, wjson, worst[2], points, seconds)
     return IdentityResult(name, Status.UNDECIDED, rc.why_undecided(), differences, wjson, rc.value, points, seconds)
+
+
+def _state_constraints(states):
+    """The constraints the states carry (‖s‖ = 1 of unit vectors, the relations of frames), or None."""
+    frames = list(dict.fromkeys(s.frame for s in states if getattr(s, "frame", None) is not None))
+    if not frames and not any(s.constraint_polynomials(t) for s in states):
+        return None
+
+    def constraints(times):
+        return ([p for u in times for s in states for p in s.constraint_polynomials(u)]
+                + [p for u in times for f in frames for p in f.constraint_polynomials(u)])
+
+    return constraints
+
+
+def _with_derivatives_done(term):
+    """The term with derivatives of expressions carried out (d/dt(x²) → 2x ẋ); ẋ itself stays."""
+    expr = term.expr
+    if not hasattr(expr, "atoms") or not expr.atoms(sympy.Derivative):
+        return term
+    done = expr.replace(lambda e: isinstance(e, sympy.Derivative) and not isinstance(e.expr, AppliedUndef),
+                        lambda e: e.doit())
+    return dataclasses.replace(term, expr=done) if dataclasses.is_dataclass(term) else term
 
 
 def _refuse_floats(name: str, claimed, reference) -> None:
@@ -262,7 +335,8 @@ class _ResidueCheck:
     def describe(self) -> str:
         shown = ", ".join(f"{text} = {value:.6g}" for text, value in self.terms)
         more = "" if len(self.terms) >= self.n_terms else f", … ({self.n_terms - len(self.terms)} more)"
-        return (f"which is {self.value:.6g} at a witness ({self.how}); residual terms there: {shown}{more}")
+        what = f"; the witness: {self.witness.explain()}" if self.witness is not None else ""
+        return (f"which is {self.value:.6g} at a witness ({self.how}{what}); residual terms there: {shown}{more}")
 
     def why_undecided(self) -> str:
         if self.all_zero:

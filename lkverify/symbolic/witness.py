@@ -68,12 +68,24 @@ class Witness:
     histories : dict
         component function → ``Lambda(θ, expression)``.
     t_eval : sympy.Rational
+
+    Examples
+    --------
+    >>> import numpy as np, sympy
+    >>> from lkverify import Parameters, UnitVector
+    >>> P = Parameters(); a = P.scalar("a", positive=True); s = UnitVector("s")
+    >>> w = make_witness([s], P, fixed={"a": sympy.Integer(3)}, rng=np.random.default_rng(0))
+    >>> w.parameter_values, w.drawn, sorted(f.__name__ for f in w.histories)
+    ({'a': 3}, (), ['s_x', 's_y', 's_z'])
+    >>> round(sum(v ** 2 for v in w.state_values([s])["s"]), 12)     # the history stays on ‖s‖ = 1
+    1.0
     """
 
     parameter_values: dict
     substitution: dict
     histories: dict
     t_eval: sympy.Rational
+    drawn: tuple = ()  # the parameters drawn at random (not fixed by the caller)
 
     def state_values(self, states: Sequence[Vector]) -> dict[str, list[float]]:
         """The states' values at ``t_eval`` (for reports)."""
@@ -90,7 +102,16 @@ class Witness:
                 vals[k] = float(v)
         return {"t": float(self.t_eval), "parameters": vals,
                 "states_at_t": self.state_values(states),
-                "histories": "smooth random histories satisfying the constraints (rotations for unit vectors)"}
+                "drawn_at_random": list(self.drawn),
+                "histories": "smooth random histories satisfying the constraints (rotations for unit vectors)",
+                "why": ("an identity must hold for every admissible history and every admissible value of "
+                        "the parameters it leaves free, so a random admissible point is a valid witness")}
+
+    def explain(self) -> str:
+        """One phrase saying what the witness is (for reports)."""
+        free = f"; random admissible values of {', '.join(self.drawn)}" if self.drawn else ""
+        return (f"random smooth admissible histories evaluated at t = {self.t_eval}{free}: an identity must hold "
+                f"at every such point; the values are in --json")
 
 
 def make_witness(states: Sequence[Vector], parameters: Parameters, *, fixed: Mapping[str, object] | None = None,
@@ -104,6 +125,17 @@ def make_witness(states: Sequence[Vector], parameters: Parameters, *, fixed: Map
     fixed : mapping, optional
         Checked parameter values to keep (name → value); the rest are random.
     rng : numpy Generator
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from lkverify import Parameters, UnitVector
+    >>> P = Parameters(); a = P.scalar("a", positive=True); tau = P.delay("tau"); s = UnitVector("s")
+    >>> w = make_witness([s], P, fixed={"tau": 1}, rng=np.random.default_rng(0))
+    >>> w.drawn, w.parameter_values["tau"], w.parameter_values["a"] > 0
+    (('a',), 1, True)
+    >>> w == make_witness([s], P, fixed={"tau": 1}, rng=np.random.default_rng(0))    # reproducible
+    True
     """
     fixed = dict(fixed or {})
     values = dict(fixed)
@@ -144,7 +176,8 @@ def make_witness(states: Sequence[Vector], parameters: Parameters, *, fixed: Map
                         + _rat(rng, -0.5, 0.5) * sympy.cos(_rat(rng, 0.5, 3) * _theta))
                 histories[f] = sympy.Lambda(_theta, expr)
     t_eval = _rat(rng, 1.5, 2.5, 8)
-    return Witness(values, substitution, histories, t_eval)
+    drawn = tuple(n for n in values if n not in fixed)
+    return Witness(values, substitution, histories, t_eval, drawn)
 
 
 def _substitute_parameters(expr, w: Witness):
@@ -160,6 +193,19 @@ def witness_constant(expr, w: Witness):
     Returns ``None`` when the expression keeps integrals or undefined functions; the
     result is exact (rational rotations, ``sin``/``cos`` of rationals) and can be
     enclosed by :mod:`lkverify.certify.intervals`.
+
+    Examples
+    --------
+    >>> import numpy as np, sympy
+    >>> from lkverify import Parameters, UnitVector, t, xi
+    >>> P = Parameters(); a = P.scalar("a", positive=True); s = UnitVector("s")
+    >>> w = make_witness([s], P, fixed={"a": sympy.Integer(3)}, rng=np.random.default_rng(0))
+    >>> witness_constant(a * t, w) == 3 * w.t_eval
+    True
+    >>> sympy.trigsimp(witness_constant(s(t).dot(s(t)), w))     # exactly on the unit sphere
+    1
+    >>> witness_constant(sympy.Integral(s(xi)[0], (xi, 0, t)), w) is None
+    True
     """
     expr = _substitute_parameters(expr, w)
     expr = expr.replace(lambda e: isinstance(e, AppliedUndef) and e.func in w.histories,
@@ -173,16 +219,45 @@ def witness_constant(expr, w: Witness):
 
 
 def evaluate(expr, w: Witness) -> float:
-    """The value of ``expr`` at the witness (quadrature for integrals)."""
+    """The value of ``expr`` at the witness (quadrature for integrals).
+
+    Examples
+    --------
+    >>> import numpy as np, sympy
+    >>> from lkverify import Parameters, UnitVector, t, xi
+    >>> P = Parameters(); a = P.scalar("a", positive=True); s = UnitVector("s")
+    >>> w = make_witness([s], P, fixed={"a": sympy.Integer(3)}, rng=np.random.default_rng(0))
+    >>> abs(evaluate(sympy.Integral(a * xi, (xi, 0, t)), w) - 3 * float(w.t_eval) ** 2 / 2) < 1e-12
+    True
+    >>> round(evaluate(sympy.Integral(s(xi).dot(s(xi)), (xi, t - 1, t)), w), 9)
+    1.0
+    >>> evaluate(sympy.Symbol("q"), w)
+    Traceback (most recent call last):
+    ...
+    lkverify.errors.UnsupportedInput: cannot evaluate numerically: unassigned symbols ['q']
+    """
     return evaluate_many([expr], w)[0]
 
 
 def evaluate_many(exprs, w: Witness) -> list[float]:
     """The values of several expressions at the witness, sharing compiled integrals."""
-    exprs = [_substitute_parameters(e, w) for e in exprs]
+    exprs = [_expand_state_derivatives(_substitute_parameters(e, w), w) for e in exprs]
     histories = {f: sympy.lambdify([lam.variables[0]], lam.expr, modules="math") for f, lam in w.histories.items()}
     fn = _compile(exprs, (t,), histories)
     return [float(v) for v in fn(float(w.t_eval))]
+
+
+def _expand_state_derivatives(expr, w: Witness):
+    """Derivatives of states (``Derivative(s_x(t), t)``) replaced by the derivatives of their histories."""
+    derivs = [d for d in expr.atoms(sympy.Derivative)
+              if any(a.func in w.histories for a in d.atoms(AppliedUndef))]
+    if not derivs:
+        return expr
+    done = {}
+    for d in derivs:
+        funcs = {a.func for a in d.atoms(AppliedUndef) if a.func in w.histories}
+        done[d] = d.subs({f: w.histories[f] for f in funcs}).doit()
+    return expr.xreplace(done)
 
 
 def _compile(exprs, bound: tuple, histories: dict):
@@ -198,6 +273,10 @@ def _compile(exprs, bound: tuple, histories: dict):
     apps = list(dict.fromkeys(a for b in bodies for a in b.atoms(AppliedUndef) if a.func in histories))
     app_holders = [sympy.Dummy(f"x{k}") for k in range(len(apps))]
     bodies = [b.xreplace(dict(zip(apps, app_holders))) for b in bodies]
+    unknown = sorted({str(a.func) for b in bodies for a in b.atoms(AppliedUndef)} - {str(f) for f in histories})
+    if unknown:
+        raise UnsupportedInput(f"cannot evaluate numerically: no history for the functions {unknown}; pass the "
+                               f"states they belong to (states=[...])")
     leftovers = set().union(*[b.free_symbols for b in bodies]) - set(bound) - set(holders) - set(app_holders)
     if leftovers:
         raise UnsupportedInput(f"cannot evaluate numerically: unassigned symbols {sorted(map(str, leftovers))}")

@@ -101,8 +101,11 @@ def _lemma1_check(v, *, budget=60.0):
         out.append(Result("region", f"delta(eps={eps})", status,
                           {"certified": float(delta), "estimate_largest": est, "eps": float(eps),
                            "estimates_other_orthonormal_pairs": others, "boxes": chk.boxes},
-                          f"(6) holds when ‖s1−r1‖² + ‖s2−r2‖² < δ² with δ = {float(delta):.6g} (certified: F ≥ 0 "
-                          f"on σ ≤ δ/2, {chk.boxes} boxes, {chk.seconds:.1f} s); sampled largest δ ≈ {est:.6g}; "
+                          f"(6) holds when ‖s1−r1‖² + ‖s2−r2‖² < δ² with δ = {float(delta):.6g} (certified: with "
+                          f"s_i = R r_i, R the rotation by angle φ about the unit axis u and σ = sin(φ/2), (6) "
+                          f"divided by σ² is F(σ, u) = ‖Σ a_i r_i×Δ_i‖² − εΣ a_i²‖Δ_i‖² ≥ 0, Δ_i = (s_i − r_i)/σ; "
+                          f"F ≥ 0 proved for all u and 0 ≤ σ ≤ δ/2, which the distance bound forces; "
+                          f"{chk.boxes} boxes, {chk.seconds:.1f} s); sampled largest δ ≈ {est:.6g}; "
                           f"other orthonormal r1, r2 give {', '.join(f'{x:.6g}' for x in others)} (the problem is "
                           f"invariant under rotating the pair)"))
     return out

@@ -129,8 +129,8 @@ def _cross_check(v, cert, *, samples=8, t_end=300.0, seed=11):
         if label in ("sample 1", "sample 2"):
             c = float(chi_norm(np.asarray(hist["s"]) - rv, np.asarray(hist["omega"])))
             name = f"{label} ($\\|\\chi\\|_\\tau = {c / dt:.2f}\\,\\tilde\\delta$)"
-            curves["d1"][name] = (tr.t, e)
-            curves["d2"][name] = (tr.t, wn)
+            curves["d1"][name] = (tr.t, e, c)  # with its ‖χ‖_τ: the figure draws the sample's own envelope
+            curves["d2"][name] = (tr.t, wn, c)
         chi = float(chi_norm(np.asarray(hist["s"]) - rv, np.asarray(hist["omega"])))
         for name, q in (("d1", e), ("d2", wn)):
             chk = cross_check(tr.t, q, env[name](tr.t, chi), name=name)

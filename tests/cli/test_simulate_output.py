@@ -95,3 +95,11 @@ def test_every_subcommand_and_option_has_help():
     assert not any("design card" in text for _, text in helps)
     convention = next(text for name, text in helps if name == "--convention")
     assert all(c in convention for c in ("yzx", "zyx", "xyz"))
+
+
+def test_check_json_carries_the_versions_of_the_proof_libraries(run_cli):
+    code, out, _ = run_cli("check", "aleksandrov2023.theorem3", "--set", "a=0.5", "--set", "b=1", "--json", "--quiet")
+    assert code == 1
+    d = json.loads(out)
+    assert {"lkverify", "sympy", "python-flint", "numpy", "scipy"} <= set(d["versions"])
+    assert all(isinstance(v, str) for v in d["versions"].values() if v is not None)

@@ -160,3 +160,36 @@ def test_fig7_printed_history_norm_is_not_reproduced_by_any_reading():
     assert r.status is Status.FAILED
     assert r.value["default"] == pytest.approx(0.953973, abs=1e-6)
     assert abs(r.value["nearest"] - 0.25) > 0.05 and not r.value["reproduced"]
+
+
+def test_does_not_converge_is_judged_by_returns_above_the_floor_not_by_the_minimum():
+    """An undamped oscillation passes through 0 and still does not converge; a decay does."""
+    from lkverify import Equation, Parameters, Series, System, Term, Vector, t
+    from lkverify.catalogue.examples import Example
+    from lkverify.simulate.experiments import DoesNotConverge, Run
+
+    P = Parameters()
+    c = P.scalar("c", nonnegative=True, default=0)
+    x = Vector("x", 2)
+    system = System([Equation(x, [Term(sympy_matrix_rotation(x, c))])], parameters=P)
+    runs_ = [Run("undamped", system, {"c": 0}, {"x": [1, 0]}), Run("damped", system, {"c": 1}, {"x": [1, 0]})]
+    ex = Example("osc", runs=runs_, t_end=40, series=[Series("x", lambda S: S["x"][:, 0])],
+                 distance=lambda S: np.abs(S["x"][:, 0]), samples=4001)
+    trs = ex.simulate()
+    undamped = DoesNotConverge("undamped").check(ex, trs)
+    assert undamped.status is Status.SIMULATED
+    assert undamped.value["min_distance_tail"] < 1e-2 < min(undamped.value["window_maxima"])
+    damped = DoesNotConverge("damped").check(ex, trs)
+    assert damped.status is Status.FAILED and max(damped.value["window_maxima"]) < 1e-2
+    with pytest.raises(Exception, match="windows ≥ 1"):
+        DoesNotConverge("undamped", windows=0)
+
+
+def sympy_matrix_rotation(x, c):
+    """x' = [[−c, 1], [−1, −c]] x."""
+    import sympy
+
+    from lkverify import t
+
+    X = x(t)
+    return sympy.Matrix([-c * X[0] + X[1], -X[0] - c * X[1]])

@@ -90,3 +90,52 @@ def test_fig7_envelope_states_its_region():
     from lkverify.proofs.aleksandrov2023.section6 import PRINTED_15
 
     assert fig7.envelope.valid_below == PRINTED_15["delta_tilde"] == 0.28
+
+
+def _user_example():
+    """A user-built Example (not a FigureExample): x' = −a x(t − τ) from x ≡ 1."""
+    import sympy
+
+    from lkverify import Equation, Parameters, Series, System, Term, Vector, t
+    from lkverify.catalogue.examples import Example
+    from lkverify.simulate.experiments import Run
+
+    P = Parameters()
+    a = P.scalar("a", positive=True, default=sympy.Rational(1, 2))
+    tau = P.delay("tau", default=1)
+    x = Vector("x", 1)
+    system = System([Equation(x, [Term(-a * x(t - tau)[0], text="−a x(t−τ)")])], parameters=P)
+    return Example("user.decay", title="x' = −a x(t − τ)", runs=[Run("x ≡ 1", system, {}, {"x": [1]})], t_end=12,
+                   series=[Series("x", lambda S: S["x"][:, 0])], distance=lambda S: np.abs(S["x"][:, 0]),
+                   ylabel="x", plot_until=6, samples=401)
+
+
+@pytest.mark.parametrize("suffix,magic", [(".png", b"\x89PNG"), (".svg", b"<?xml"), (".pdf", b"%PDF")])
+def test_user_example_figure_in_the_shared_style(tmp_path, suffix, magic):
+    from matplotlib.figure import Figure
+
+    ex = _user_example()
+    trajectories = ex.simulate()
+    drawn = []
+    original = Figure.savefig
+    try:
+        Figure.savefig = lambda self, *a, **k: (drawn.append(self), original(self, *a, **k))[1]
+        ex.plot(trajectories, tmp_path / f"f{suffix}")
+    finally:
+        Figure.savefig = original
+    assert (tmp_path / f"f{suffix}").read_bytes().startswith(magic)
+    (fig,) = drawn
+    (ax,) = fig.axes
+    assert ax.get_xlabel() == "$t$" and ax.get_ylabel() == "x"
+    assert ax.get_xlim()[1] >= 12 - 1e-9  # the whole run, not only the paper's window t ≤ 6
+    assert "t ∈ [0, 12]" in ax.get_title()
+    labels = [text.get_text() for text in ax.get_legend().get_texts()]
+    assert "the paper's window t ≤ 6" in labels
+
+
+@pytest.mark.parametrize("name", ["f.jpg", "f", "f.png.txt"])
+def test_plot_suffix_other_than_png_pdf_svg_is_refused(name):
+    from lkverify.cli import check_output_path
+
+    with pytest.raises(InputError, match=r"\.png, \.pdf, \.svg"):
+        check_output_path(name)
