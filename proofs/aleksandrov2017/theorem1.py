@@ -6,12 +6,15 @@ Its Lyapunov function
     V = ½ωᵀJω + (a1/2)‖s1−r1‖² + (a2/2)‖s2−r2‖² + γ h^ν(t) ωᵀJη,   η = a1 s1×r1 + a2 s2×r2,
 
 and the paper prints V̇ along (2),(9) exactly; that print is checked below term by term
-(a time-varying coefficient: ḣ enters through ∂/∂t).
+(a time-varying coefficient: ḣ enters through ∂/∂t).  Conditions (5), (10), (11) on the run's
+h and ν are decided symbolically (:mod:`.conditions_h`): e.g. ``--set "h=(1+t)**(-6/5)"`` fails
+(11) for every ν ≥ 1 (Corollary 1: β ≤ 1 is needed).
 """
 
 from lkverify import DerivativeClaim, Functional, Hypothesis, Term, Theorem, cross, dot, norm_squared, quad, t
 from lkverify.declare.rigidbody import restoring_torque_rate
 
+from .conditions_h import ConditionsOnH
 from .equations import PAPER, D, J, a1, a2, eta, gamma, h, nu, omega, r1, r2, s1, s2, system
 
 __all__ = ["functional", "printed_Vdot", "theorem1"]
@@ -43,9 +46,10 @@ theorem1 = Theorem(
     title="Theorem 1: linear damping 2h(t)Dω with h → 0; the printed V̇ checked",
     system=system,
     functional=functional,
-    hypotheses=[Hypothesis("nu >= 1", nu - 1, strict=False, reference="(10), (11)")],
+    hypotheses=[Hypothesis("nu >= 1", nu - 1, strict=False, reference="(10), (11)"),
+                ConditionsOnH("(5), (10), (11) on h", h, nu, reference="(5), (10), (11)")],
     claims=[DerivativeClaim("Vdot_printed", functional, system, printed_Vdot,
                             description="the printed V̇ along (2),(9), as printed")],
-    unchecked=["conditions (10), (11) on h", "the bounds with α1…α7 and the region δ2", "Lemma 1"],
+    unchecked=["the bounds with α1…α7 and the region δ2", "Lemma 1"],
     paper=PAPER,
 )
