@@ -22,7 +22,8 @@ base-frame axes are assumed.
 
 Modules: :mod:`.equations` (parameters, states, (2), (9)), :mod:`.theorem1`,
 :mod:`.theorem1_bound` (the printed h^{ν−1}ḣ step, refuted for decreasing h, and its corrected form),
-:mod:`.example` (section 6), :mod:`.lemma1` (Lemma 1 with a certified δ(ε)).
+:mod:`.example` (section 6), :mod:`.lemma1` (Lemma 1 with a certified δ(ε)),
+:mod:`.conditions_h` (conditions (5), (10), (11) on h decided symbolically; Corollary 1).
 """
 
 from .equations import PAPER, D, J, P, a1, a2, eps, eta, gamma, h, nu, omega, r1, r2, r3, s1, s2, s3, system
@@ -30,6 +31,7 @@ from .theorem1 import functional, printed_Vdot, theorem1
 from .theorem1_bound import theorem1_bound
 from .example import HISTORY, example, remark2_energy
 from .lemma1 import EPSILONS, Lemma1Constants, lemma1, lemma1_delta, lemma1_F
+from .conditions_h import ConditionsOnH, corollary1, decide_h_conditions
 
 __all__ = [
     "PAPER",
@@ -41,4 +43,6 @@ __all__ = [
     "HISTORY", "example", "remark2_energy",
     # Lemma 1
     "EPSILONS", "Lemma1Constants", "lemma1", "lemma1_F", "lemma1_delta",
+    # conditions (5), (10), (11) on h; Corollary 1
+    "ConditionsOnH", "corollary1", "decide_h_conditions",
 ]

@@ -36,7 +36,7 @@ from lkverify.options import BudgetExceeded, Deadline
 from lkverify.report import Result
 from lkverify.status import Status
 
-__all__ = ["ConditionsOnH", "decide_h_conditions"]
+__all__ = ["ConditionsOnH", "corollary1", "decide_h_conditions"]
 
 _T = sympy.Symbol("t", nonnegative=True)       # t restricted to t ≥ 0 (printed as t)
 _W = sympy.Symbol("w", nonnegative=True)       # ν = 1 + w
@@ -492,3 +492,44 @@ def _plain(value):
     if isinstance(value, dict):
         return {k: _plain(v) for k, v in value.items()}
     return str(value)
+
+
+def _corollary1_check(v, *, budget=60.0):
+    """Corollary 1: for h = (t+1)^{−β} the conditions (5), (10), (11) hold iff β ≤ 1, (14)."""
+    beta = sympy.Symbol("beta", positive=True)
+    parts = decide_h_conditions((t + 1) ** (-beta), budget=min(float(budget), 30.0))
+    found = parts[-1]
+    out = [Result("hypothesis", f"h = (t+1)^(−β): {p.name}", p.status, _plain(p.value), p.detail) for p in parts]
+    if found.status is Status.EXACT:
+        condition = found.value["condition"]
+        same = sympy.simplify(sympy.Equivalent(condition, beta <= 1)) is sympy.true
+        status = Status.EXACT if same else Status.FAILED
+        detail = (f"the conditions derived for h = (t+1)^(−β) are {condition}, "
+                  + ("the paper's (14) β ≤ 1" if same else "not the paper's (14) β ≤ 1"))
+    else:
+        status, detail = found.status, f"not decided: {found.detail}"
+    out.append(Result("hypothesis", "Corollary 1: (10), (11) for h = (t+1)^(−β) ⇔ (14) β ≤ 1", status,
+                      {"derived": _plain(found.value)}, detail))
+    for b in (sympy.Rational(7, 8), sympy.Rational(8, 7)):  # the two dampings of section 6
+        r = decide_h_conditions((t + 1) ** (-b), budget=min(float(budget), 15.0))[-1]
+        expect = b <= 1
+        holds = r.status is Status.EXACT
+        # the statement checked is "(10), (11) hold iff β ≤ 1" at this β: proved either way it goes
+        status = (Status.UNDECIDED if r.status is Status.UNDECIDED else
+                  Status.EXACT if holds == expect else Status.FAILED)
+        out.append(Result("hypothesis", f"section 6: β = {b}", status, _plain(r.value),
+                          f"{'the conditions hold' if holds else 'no ν ≥ 1 works'} for β = {b}, as (14) "
+                          f"{'says' if holds == expect else 'does not say'}: {r.detail}"))
+    return out
+
+
+def _make_corollary1():
+    from lkverify import Check
+
+    from .equations import PAPER, P
+
+    return Check("corollary1", parameters=P, checks=[_corollary1_check], relevant=(), paper=PAPER,
+                 title="Corollary 1: h = (t+1)^(−β) satisfies (10), (11) iff β ≤ 1 (14), decided symbolically")
+
+
+corollary1 = _make_corollary1()

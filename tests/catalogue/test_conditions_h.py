@@ -164,3 +164,34 @@ def test_theorem1_with_a_slower_h_and_its_nu():
     assert res["(5), (10), (11) on h"].status is Status.EXACT
     _, res = _theorem1_run({"h": h, "nu": sympy.Integer(3)})  # ∫(1+t)^{−3/2} = 2 < ∞
     assert res["(5), (10), (11) on h"].status is Status.FAILED
+
+
+def test_corollary1_item_derives_beta_le_1_and_section6():
+    from lkverify.catalogue.loader import find_items
+
+    (item,) = find_items("aleksandrov2017.corollary1")
+    rep = item.run({}, budget=60)
+    res = {r.name: r for r in rep.results}
+    assert res["Corollary 1: (10), (11) for h = (t+1)^(−β) ⇔ (14) β ≤ 1"].status is Status.EXACT
+    assert res["section 6: β = 7/8"].status is Status.EXACT and "hold for β = 7/8" in res["section 6: β = 7/8"].detail
+    assert res["section 6: β = 8/7"].status is Status.EXACT and "no ν ≥ 1 works" in res["section 6: β = 8/7"].detail
+    assert rep.holds
+
+
+def test_corollary1_comparison_refutes_a_wrong_printed_condition(monkeypatch):
+    """Were the derived condition different from (14), the item must say so (failed)."""
+    from lkverify.proofs.aleksandrov2017 import conditions_h
+
+    real = conditions_h.decide_h_conditions
+
+    def wrong(h, **kw):
+        out = real(h, **kw)
+        last = out[-1]
+        if kw.get("nu") is None and isinstance(last.value, dict) and "condition" in last.value:
+            beta = sympy.Symbol("beta", positive=True)
+            out[-1] = type(last)(last.kind, last.name, last.status, {**last.value, "condition": beta <= 2}, last.detail)
+        return out
+
+    monkeypatch.setattr(conditions_h, "decide_h_conditions", wrong)
+    res = {r.name: r for r in conditions_h._corollary1_check({}, budget=30)}
+    assert res["Corollary 1: (10), (11) for h = (t+1)^(−β) ⇔ (14) β ≤ 1"].status is Status.FAILED
