@@ -129,6 +129,7 @@ def test_broken_proof_file_is_bad_input(tmp_path, capsys):
     assert code == 2 and "failed to load" in err
 
 
+@pytest.mark.slow  # the whole catalogue, about 60 s: the default run stays under its 10-minute limit
 def test_bare_command_reports_the_catalogue(capsys):
     code, out, _ = run(capsys)
     assert code == 0
