@@ -88,6 +88,9 @@ def _build_parser() -> argparse.ArgumentParser:
                         "`lkverify` does); prints progress lines on stderr, about 1 minute")
     rp.add_argument("--json", action="store_true", help="print a JSON list with one object per item: item, "
                     "parameters, results (kind, name, status, value, detail), verdict and versions")
+    rp.add_argument("--jobs", type=int, default=None, metavar="N",
+                    help="items run in N worker processes at once (default: the number of CPUs, at most 4; "
+                         "1: one after the other); the output order is the catalogue's")
     _add_quiet(rp)
     c = sub.add_parser("check", help="check an item's hypotheses and identities")
     c.add_argument("item", help="catalogue name (aleksandrov2023.theorem3), a paper, or path/to/proof.py[::item]")
@@ -239,7 +242,7 @@ def _dispatch(args) -> int:
             print(f"{qualified:<{width}} {kind:<8} {title}")
         return 0
     if args.command in (None, "report"):
-        return _report(json_out=getattr(args, "json", False), quiet=args.quiet)
+        return _report(json_out=getattr(args, "json", False), quiet=args.quiet, jobs=getattr(args, "jobs", None))
     if args.command == "check":
         values = _set_values(args.sets)
         items = find_items(args.item, load_limit=args.load_limit)
@@ -541,22 +544,52 @@ def _constants_within_budget(item, values, args, say):
     return Report(item.qualified_name, shown, (result,), f"undecided: the time budget of {args.budget:g} s ran out"), {}
 
 
-def _report(*, json_out: bool, quiet: bool = False) -> int:
+_REPORT_ITEMS: dict = {}  # qualified name → item, inherited by the forked workers of the report
+
+
+def _report_one(name: str):
+    """Run one item at its defaults (in a worker): (text, JSON, holds) — plain data, picklable."""
+    rep = _REPORT_ITEMS[name].run({})
+    return rep.as_text(), rep.to_json(), rep.holds
+
+
+def _report(*, json_out: bool, quiet: bool = False, jobs: int | None = None) -> int:
     say = _progress(not quiet)
-    reports = []
     todo = [item for pf in catalogue() for item in pf.items.values()]
-    for k, item in enumerate(todo):
-        say(f"item {k + 1}/{len(todo)}: {item.qualified_name}", force=True)
-        reports.append(item.run({}, progress=say))
+    if jobs is not None and jobs < 1:
+        raise InputError(f"--jobs: expected a positive number of worker processes, got {jobs}; e.g. --jobs 2")
+    jobs = jobs or min(os.cpu_count() or 1, 4)
+    _REPORT_ITEMS.clear()
+    _REPORT_ITEMS.update({item.qualified_name: item for item in todo})
+    names = list(_REPORT_ITEMS)
+    outputs = None
+    if jobs > 1 and len(names) > 1:
+        import multiprocessing
+        from concurrent.futures import ProcessPoolExecutor
+
+        if "fork" in multiprocessing.get_all_start_methods():  # workers inherit the loaded catalogue
+            say(f"{len(names)} items in {jobs} worker processes", force=True)
+            with ProcessPoolExecutor(jobs, mp_context=multiprocessing.get_context("fork")) as pool:
+                futures = [pool.submit(_report_one, n) for n in names]
+                outputs = []
+                for k, (n, fut) in enumerate(zip(names, futures)):
+                    outputs.append(fut.result())
+                    say(f"item {k + 1}/{len(names)} done: {n}", force=True)
+    if outputs is None:
+        outputs = []
+        for k, item in enumerate(todo):
+            say(f"item {k + 1}/{len(todo)}: {item.qualified_name}", force=True)
+            rep = item.run({}, progress=say)
+            outputs.append((rep.as_text(), rep.to_json(), rep.holds))
     say(f"{len(todo)} items done", force=True)
     if json_out:
         versions = _versions(PROOF_LIBRARIES)
-        print(json.dumps([{**r.to_json(), "versions": versions} for r in reports], indent=2, ensure_ascii=False))
+        print(json.dumps([{**js, "versions": versions} for _, js, _ in outputs], indent=2, ensure_ascii=False))
     else:
         print("lkverify: the catalogue at the papers' defaults\n")
-        print("\n\n".join(r.as_text() for r in reports))
-        held = sum(r.holds for r in reports)
-        print(f"\n{len(reports)} items: {held} with every result holding, {len(reports) - held} with a failed "
+        print("\n\n".join(text for text, _, _ in outputs))
+        held = sum(h for _, _, h in outputs)
+        print(f"\n{len(outputs)} items: {held} with every result holding, {len(outputs) - held} with a failed "
               f"or undecided result (a failed identity against a printed formula is a finding about the paper)")
     return 0
 

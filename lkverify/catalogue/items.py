@@ -102,8 +102,8 @@ class Theorem(Item):
     claims : sequence of DerivativeClaim or IdentityClaim
     title : str
     unchecked : sequence of str
-        Steps of the proof this item does not check (reported in the verdict,
-        so that a verdict never claims more than was checked).
+        The proof module's note of steps it does not encode yet; the verdict never uses it
+        (it names the first link of the computed chain that is not proved).
     constants : ConstantsJob, optional
         What ``lkverify constants`` computes and certifies for this item.
     steps : sequence of TermwiseBound
@@ -111,9 +111,14 @@ class Theorem(Item):
         each proved term by term (:mod:`lkverify.certify.steps.chain`).
     decay : Decay, optional
         The last link: the certified decay of the checked L, U, W on the region.
-    choices : mapping
+    choices : mapping or callable
         Values of the proof's free parameters (λ, α, β, the region) used when the user
-        does not set them (``--set lam=…``); they appear in the report's parameters.
+        does not set them (``--set lam=…``); they appear in the report's parameters.  A
+        callable ``choices(resolved values) → mapping`` finds them at the run's gains.
+    printed : sequence of DerivativeClaim or IdentityClaim
+        The paper's printed formulas compared with the derivation: their results are
+        findings about the paper, reported with the verdict but not links of the chain
+        (the chain rests on ``claims``, the derived identities).
 
     Examples
     --------
@@ -140,7 +145,7 @@ class Theorem(Item):
     def __init__(self, name: str, *, system: System, functional: Functional | None = None,
                  hypotheses: Sequence[Hypothesis] = (), claims: Sequence = (), bounds: Sequence = (),
                  title: str = "", unchecked: Sequence[str] = (), paper: str = "", constants=None,
-                 steps: Sequence = (), decay=None, choices: Mapping | None = None):
+                 steps: Sequence = (), decay=None, choices: Mapping | None = None, printed: Sequence = ()):
         if not name.isidentifier():
             raise InputError(f"item name must be an identifier, got {name!r}")
         problems = []
@@ -149,14 +154,14 @@ class Theorem(Item):
                 problems.append(f"bounds must be BoundClaim objects, got {type(b).__name__}")
             elif b.system is not system or (functional is not None and b.functional is not functional):
                 problems.append(f"bound step {b.name!r} is not stated for this theorem's own system and functional")
-        for c in claims:
+        for c in (*claims, *printed):
             if not isinstance(c, (DerivativeClaim, IdentityClaim)):
                 problems.append(f"claims must be DerivativeClaim or IdentityClaim, got {type(c).__name__}")
             elif c.system is not system:
                 problems.append(f"claim {c.name!r} is stated along the system {c.system.name or c.system!r}, not "
                                 f"along this theorem's system {system.name or system!r}; declare it with the "
                                 f"theorem's own System object")
-        names = [h.name for h in hypotheses] + [c.name for c in claims if hasattr(c, "name")] \
+        names = [h.name for h in hypotheses] + [c.name for c in (*claims, *printed) if hasattr(c, "name")] \
             + [b.name for b in bounds if hasattr(b, "name")]
         twice = sorted({n for n in names if names.count(n) > 1})
         if twice:
@@ -168,6 +173,7 @@ class Theorem(Item):
         self.functional = functional
         self.hypotheses = tuple(hypotheses)
         self.claims = tuple(claims)
+        self.printed = tuple(printed)
         self.bounds = tuple(bounds)
         self.title = title
         self.unchecked = tuple(unchecked)
@@ -175,7 +181,7 @@ class Theorem(Item):
         self.constants = constants
         self.steps = tuple(steps)
         self.decay = decay
-        self.choices = dict(choices or {})
+        self.choices = choices if callable(choices) else dict(choices or {})
 
     @property
     def parameters(self) -> Parameters:
@@ -210,8 +216,9 @@ class Theorem(Item):
             results.append(_not_exact_if_floats(res, _symbols_of(h), floated_all))
         details = []
         sub_given = P.substitution(given)
-        for k, claim in enumerate(self.claims):
-            progress(f"{self.qualified_name}: identity {k + 1}/{len(self.claims)} {claim.name}")
+        every_claim = (*self.claims, *self.printed)
+        for k, claim in enumerate(every_claim):
+            progress(f"{self.qualified_name}: identity {k + 1}/{len(every_claim)} {claim.name}")
             if deadline.expired:
                 results.append(Result("identity", claim.name, Status.UNDECIDED, None,
                                       f"not checked: the time budget of {budget:g} s was spent before this claim"))
@@ -233,8 +240,10 @@ class Theorem(Item):
             if step.role is not None:
                 definite[step.name] = step.positive_definite_bound(everything)
         checked = {}
+        chosen = {}
         if self.steps:
-            everything = P.resolve({**self.choices, **dict(values or {})}, use_defaults=True)
+            chosen = self.chosen(values or {})
+            everything = P.resolve({**chosen, **dict(values or {})}, use_defaults=True)
             floated_all = P.float_symbols(everything)
         for k, step in enumerate(self.steps):
             progress(f"{self.qualified_name}: bound step {k + 1}/{len(self.steps)} {step.name}")
@@ -248,23 +257,34 @@ class Theorem(Item):
         decay = None
         if self.decay is not None and all(r in checked and checked[r][1].status.is_proof
                                           for r in ("lower", "upper", "vdot")):
-            progress(f"{self.qualified_name}: the decay on the region")
+            progress(f"{self.qualified_name}: {getattr(self.decay, 'link', 'the decay on the region')}")
             rows, status, detail = self.decay.certify(checked, everything, budget=_left(deadline),
                                                       progress=progress)
             results += rows
-            decay = Link("decay on the region (V̇ ≤ −c̃V^p, envelope)", status, detail)
-        return Report(self.qualified_name, self.shown(everything), tuple(results),
+            decay = Link(getattr(self.decay, "link", "decay on the region (V̇ ≤ −c̃V^p, envelope)"), status, detail)
+        return Report(self.qualified_name, self.shown(everything, chosen), tuple(results),
                       self._verdict(results, definite, upper, checked, decay), tuple(details),
                       self.chain(results, definite=definite, upper=upper, steps=checked, decay=decay))
 
-    def shown(self, values: Mapping) -> dict:
+    def chosen(self, values: Mapping) -> dict:
+        """The proof's free choices at these values: the fixed ``choices``, or those its callable finds.
+
+        A callable ``choices(resolved)`` gets the resolved values (the given ones and the
+        defaults) and returns the choices as exact strings; values the user gives win.
+        """
+        if not callable(self.choices):
+            return dict(self.choices)
+        found = self.choices(self.parameters.resolve(dict(values), use_defaults=True))
+        return {k: v for k, v in dict(found).items() if k not in values}
+
+    def shown(self, values: Mapping, chosen: Mapping | None = None) -> dict:
         """The parameters the theorem uses (its system, functional, hypotheses, claims and steps), shown.
 
         A paper's registry holds the parameters of all its theorems; a report lists only
         those this theorem's statements are written in.
         """
         used: set = set()
-        for statement in (*self.hypotheses, *self.claims, *self.bounds, *self.steps):
+        for statement in (*self.hypotheses, *self.claims, *self.printed, *self.bounds, *self.steps):
             used |= _symbols_of(statement)
         exprs = [term.expr for eq in self.system.equations for term in eq.terms]
         if self.functional is not None:
@@ -279,7 +299,8 @@ class Theorem(Item):
         out = {}
         for name, value in values.items():
             atoms = set(P[name].substitution(value))
-            if atoms & used or name in self.choices:
+            if atoms & used or name in (chosen if chosen is not None else
+                                        {} if callable(self.choices) else self.choices):
                 out[name] = _show(value)
         return out
 
@@ -288,8 +309,11 @@ class Theorem(Item):
         if decay is not None and text.startswith("established") and decay.status is not None \
                 and decay.status.is_proof:
             text += f"; on the certified region: {decay.detail}"
-        if self.unchecked and not text.startswith("established"):
-            text += "; the proof module lists as not yet checked: " + "; ".join(self.unchecked)
+        by_name = {r.name: r for r in results}
+        printed = [by_name[c.name] for c in self.printed if c.name in by_name]
+        if printed:
+            text += "; the paper's printed formulas (findings, not links of the chain): " + ", ".join(
+                f"{r.name} {r.status}" for r in printed)
         return text
 
     def chain(self, results, *, definite: Mapping | None = None, upper=None, steps: Mapping | None = None,
@@ -346,10 +370,11 @@ class Theorem(Item):
             if self.decay is None:
                 links.append(Link("decay on the region", None, "the theorem declares no decay link"))
             elif decay is None:
-                links.append(Link("decay on the region", None, "not attempted: a bound step is not proved"))
+                links.append(Link(getattr(self.decay, "link", "decay on the region"), None,
+                                  "not attempted: a bound step is not proved"))
             else:
                 links.append(decay)
-            return _concluded(links, results, own)
+            return _concluded(links, results, own, [c.name for c in self.printed])
         links.append(Link("V ≤ U(‖x_t‖), U continuous, U(0) = 0", None if upper is None else upper.status,
                           "no bound step of this theorem checks it" if upper is None else upper.detail))
         for role, text in (("lower", "V ≥ φ(‖state‖), φ positive definite"),
@@ -365,12 +390,13 @@ class Theorem(Item):
                               "; ".join(f"{b.name}: {by_name[b.name].status}"
                                         + (f", bound: {definite[b.name].detail}" if b.name in definite else "")
                                         for b in steps)))
-        return _concluded(links, results, own)
+        return _concluded(links, results, own, [c.name for c in self.printed])
 
 
-def _concluded(links: list, results, own) -> tuple:
+def _concluded(links: list, results, own, printed=()) -> tuple:
     """The links with the intermediate identities and the conclusion appended."""
-    others = [r for r in results if r.kind == "identity" and r.name not in {c.name for c in own}]
+    skip = {c.name for c in own} | set(printed)
+    others = [r for r in results if r.kind == "identity" and r.name not in skip]
     if others:
         links.append(Link("intermediate identities", _combined([r.status for r in others]),
                           ", ".join(f"{r.name}: {r.status}" for r in others)))
@@ -518,31 +544,38 @@ def theorem_verdict(links) -> str:
     """The verdict of a chain of links (see :meth:`Theorem.chain`), computed from their statuses.
 
     "established" only when every link is ``exact`` or ``certified``; otherwise the
-    verdict names the failed, undecided and missing links, in the chain's order.
+    verdict names the first link, in the chain's order, that is failed, undecided or
+    missing (with its detail), counts the links after it that are not proved, and lists
+    the links proved.
 
     Examples
     --------
     >>> theorem_verdict([Link("V̇", Status.EXACT), Link("V ≥ φ", None, "no bound step")])
     'not established: missing: V ≥ φ (no bound step); checked: V̇ (exact)'
+    >>> theorem_verdict([Link("V̇", Status.FAILED, "a sign"), Link("V ≥ φ", None, "no bound step"),
+    ...                  Link("conclusion", None)])
+    'failed: V̇ (a sign); 1 later link not proved (V ≥ φ)'
     >>> theorem_verdict([Link("V̇", Status.EXACT), Link("conclusion", Status.EXACT)])
     'established: every link exact or certified (V̇, conclusion)'
     """
     links = list(links)
-    failed = [link for link in links if link.status is Status.FAILED]
-    undecided = [link for link in links if link.status is not None and not link.status.is_proof
-                 and link.status is not Status.FAILED]
-    missing = [link for link in links if link.status is None and link.name != "conclusion"]
+    bad = [link for link in links if link.name != "conclusion"
+           and (link.status is None or not link.status.is_proof)]
     proved = [link for link in links if link.status is not None and link.status.is_proof]
-    if not failed and not undecided and not missing and all(not link.missing for link in links):
+    if not bad and all(not link.missing for link in links):
         return f"established: every link exact or certified ({', '.join(link.name for link in links)})"
-    parts = []
-    if failed:
-        parts.append("failed: " + "; ".join(f"{link.name} ({link.detail})" for link in failed))
-    if undecided:
-        parts.append("undecided: " + "; ".join(f"{link.name} ({link.status}: {link.detail})" for link in undecided))
-    if missing:
-        parts.append("missing: " + "; ".join(f"{link.name} ({link.detail})" for link in missing))
-    text = "; ".join(parts) if failed else "not established: " + "; ".join(parts)
+    if not bad:
+        return "not established: the conclusion does not follow from the links"
+    first, later = bad[0], bad[1:]
+    if first.status is Status.FAILED:
+        text = f"failed: {first.name} ({first.detail})"
+    elif first.status is not None:
+        text = f"undecided: {first.name} ({first.status}: {first.detail})"
+    else:
+        text = f"not established: missing: {first.name} ({first.detail})"
+    if later:
+        text += (f"; {len(later)} later link{'s' if len(later) > 1 else ''} not proved "
+                 f"({', '.join(link.name for link in later)})")
     if proved:
         text += "; checked: " + ", ".join(f"{link.name} ({link.status})" for link in proved)
     return text

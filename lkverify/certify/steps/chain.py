@@ -403,7 +403,12 @@ class TermwiseBound:
         for rewrite in tb.then:
             if bound is None:
                 break
-            nxt = rewrite.rewrite(bound, ctx) if hasattr(rewrite, "rewrite") else rewrite.apply(bound, direction, ctx)
+            if getattr(rewrite, "directional", False):
+                nxt = rewrite.rewrite(bound, ctx, direction)
+            elif hasattr(rewrite, "rewrite"):
+                nxt = rewrite.rewrite(bound, ctx)
+            else:
+                nxt = rewrite.apply(bound, direction, ctx)
             apps.append(nxt)
             bound = nxt.bound
         if ctx.certified:  # constants certified inside the rule's norm trees
@@ -645,3 +650,132 @@ def _positive_rate_point(model, grid: int = 41):
     if sign.sign is None or sign.sign < 0 or all(x == 0 for x in at.values()):
         return None
     return at, value
+
+
+def collect_monomials(expr, symbols) -> dict:
+    """{monomial in ``symbols``: its coefficient} of an expanded expression (coefficients summed).
+
+    >>> import sympy
+    >>> x, y, a = sympy.symbols("x y a", nonnegative=True)
+    >>> sorted(collect_monomials(3 * x**2 + a * x**2 - y * x + 2, {x, y}).items(), key=str)
+    [(1, 2), (x**2, a + 3), (x*y, -1)]
+    """
+    out: dict = {}
+    for term in sympy.Add.make_args(sympy.expand(expr)):
+        c, m = sympy.S.One, sympy.S.One
+        for f in sympy.Mul.make_args(term):
+            if f.free_symbols & symbols:
+                m *= f
+            else:
+                c *= f
+        m = sympy.powsimp(m, force=True)
+        out[m] = out.get(m, sympy.S.Zero) + c
+    return {m: c for m, c in out.items() if c != 0}
+
+
+def _coefficient_sign(c):
+    """(sign, status) of a numeric coefficient: exact for rationals, certified by arb enclosures otherwise."""
+    from ..intervals import sign_of
+
+    c = sympy.sympify(c)
+    if c.free_symbols:
+        return None, Status.UNDECIDED
+    if c.is_Rational:
+        return (0 if c == 0 else 1 if c > 0 else -1), Status.EXACT
+    try:
+        res = sign_of(c)
+    except Exception:  # noqa: BLE001 - an unsupported node: not decided
+        return None, Status.UNDECIDED
+    return res.sign, Status.CERTIFIED
+
+
+@dataclasses.dataclass(frozen=True)
+class Krasovskii:
+    """The last link of a theorem that concludes asymptotic stability (Krasovskii's theorem).
+
+    From the checked steps V ≥ L, V ≤ U and V̇ ≤ W on the region (their right-hand sides at
+    the checked values, sums of monomials in nonnegative measures) it proves
+
+    * V ≥ φ(‖x(t)‖): every coefficient of L is ≥ 0 and each point measure x (``point``, the
+      norms that make up the state x(t)) has a pure power x^a with a positive coefficient;
+    * V ≤ U(‖x_t‖_τ): every coefficient of U is ≥ 0 and U has no constant term (the measures
+      are continuous in x_t and vanish at 0, so U does);
+    * V̇ ≤ −ψ(‖x(t)‖): every coefficient of W is ≤ 0 and each point measure has a pure power
+      with a negative one.
+
+    A coefficient's sign is decided exactly (rationals) or with arb enclosures (certified).
+    The first monomial of the wrong sign is named.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
+    >>> from lkverify.certify.steps import Rayleigh, Region, TermBound, TermwiseBound, norm_measure
+    >>> P = Parameters(); x = Vector("x", 2); n = norm_measure("n", x(t)); N = n.symbol
+    >>> sys_ = System([Equation(x, [Term(-x(t))])], parameters=P)
+    >>> def step(role, c, rel="<="):
+    ...     rule = Rayleigh(x(t), sympy.eye(2), factor=c, eigenvalue=1, norm_squared=N**2)
+    ...     return TermwiseBound(role, None, sys_, "terms", [TermBound("T", c * N**2, rule)], c * N**2, [n],
+    ...                          relation=rel, region=Region({n: 1}), role=role,
+    ...                          terms=(Term(c * x(t).dot(x(t)), text="T"),))
+    >>> steps = {s.role: (s, s.check(P.resolve({}))) for s in (step("lower", 1, ">="), step("upper", 2),
+    ...                                                         step("vdot", -2))}
+    >>> rows, status, detail = Krasovskii(("n",)).certify(steps, P.resolve({}))
+    >>> status.value, rows[0].detail.split("): ")[1].split(";")[0]
+    ('exact', 'V ≥ φ: L = n**2')
+    >>> steps["vdot"] = (step("vdot", 2), step("vdot", 2).check(P.resolve({})))
+    >>> Krasovskii(("n",)).certify(steps, P.resolve({}))[2]
+    'V̇ ≤ −ψ fails: W has the monomial n**2 with the coefficient 2 > 0'
+    """
+
+    point: tuple
+    link = "V ≥ φ(‖x(t)‖), V ≤ U(‖x_t‖), V̇ ≤ −ψ(‖x(t)‖) on the region (Krasovskii)"
+
+    def certify(self, steps: Mapping, values: Mapping, *, budget=None, progress=None, **_):
+        """(results, status, detail) of the three sign conditions; nothing is estimated."""
+        (ls, lres), (us, ures), (ws, wres) = (steps[r] for r in ("lower", "upper", "vdot"))
+        syms = {m.symbol for s_ in (ls, us, ws) for m in s_.measures}
+        by_name = {m.name: m for s_ in (ls, us, ws) for m in s_.measures}
+        unknown = [p for p in self.point if p not in by_name]
+        if unknown:
+            return [], Status.UNDECIDED, f"the point measures {', '.join(unknown)} are not measures of the steps"
+        point = [by_name[p].symbol for p in self.point]
+        statuses, parts = [], []
+
+        def check(name, expr, want, pure_sign):
+            coeffs = collect_monomials(expr, syms)
+            pure = set()
+            for mono, c in coeffs.items():
+                if not mono.free_symbols & syms:
+                    if name == "U":
+                        return f"U has the constant term {c}, so U(0) ≠ 0"
+                    continue
+                sign, st = _coefficient_sign(c)
+                if sign is None:
+                    statuses.append(Status.UNDECIDED)
+                    return f"the sign of the coefficient {c} of {mono} in {name} is not decided"
+                statuses.append(st)
+                if sign * want < 0:
+                    return (f"{name} has the monomial {mono} with the coefficient {float(c):.4g} "
+                            f"{'<' if want > 0 else '>'} 0")
+                if sign == pure_sign and len(mono.free_symbols) == 1 and mono.free_symbols <= set(point):
+                    pure |= mono.free_symbols
+            if pure_sign and set(point) - pure:
+                return (f"{name} has no pure power of {', '.join(sorted(map(str, set(point) - pure)))} with a "
+                        f"{'positive' if pure_sign > 0 else 'negative'} coefficient")
+            return None
+
+        for name, res, want, pure, text in (("L", lres, 1, 1, "V ≥ φ"), ("U", ures, 1, 0, "V ≤ U"),
+                                            ("W", wres, -1, -1, "V̇ ≤ −ψ")):
+            why = check(name, res.rhs, want, pure)
+            if why is not None:
+                failed = "not decided" not in why
+                return [], Status.FAILED if failed else Status.UNDECIDED, f"{text} fails: {why}" if failed else why
+            parts.append(f"{text}: {name} = {sympy.N(sympy.expand(res.rhs), 4)}")
+        status = Status.EXACT if all(s_ is Status.EXACT for s_ in statuses) else Status.CERTIFIED
+        sub = ws.system.parameters.substitution(values)
+        region = ws.region.at(sub).describe() if ws.region is not None else "everywhere"
+        detail = (f"on the region {region}: V ≥ φ, V ≤ U, V̇ ≤ −ψ with x(t) = ({', '.join(self.point)}), every "
+                  f"coefficient of L, U, W of its sign ({status})")
+        row = Result("region", "Krasovskii conditions", status, {"region": region}, f"{detail}: " + "; ".join(parts))
+        return [row], status, detail

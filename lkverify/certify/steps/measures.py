@@ -263,7 +263,7 @@ class Region:
             b = sympy.sympify(b).xreplace(sub)
             h = sympy.sympify(m.window).xreplace(sub)
             if measure.kind == "norm":
-                lag = sympy.simplify(t - measure.time)
+                lag = sympy.simplify(sympy.sympify(t - measure.time).xreplace(sub))
                 if measure.vector == m.vector.subs(xi, measure.time) and lag.is_nonnegative \
                         and sympy.simplify(h - lag).is_nonnegative:
                     return b

@@ -972,12 +972,26 @@ class Young(Rule):
         return self.rewrite(ctx.at(term), ctx)
 
 
+_HOMOGENEOUS_CACHE: dict = {}  # (g, T, xs) → a certified (κ, conditions, info): one proof per process
+
+
 def _homogeneous_sup(g, T, xs, seconds: float = 30.0):
     """(κ or None, conditions, info): κ ≥ sup g/T over x ≥ 0, x ≠ 0 for g, T homogeneous of one degree.
 
     Homogeneity is checked exactly (g(ρx)/T(ρx) = g(x)/T(x)); the supremum is then the one on
-    the faces max_k x_k = 1 of the unit cube, certified there with arb.
+    the faces max_k x_k = 1 of the unit cube, certified there with arb.  A certified result is
+    kept for the process (the same supremum recurs in several steps of one proof).
     """
+    key = (sympy.sympify(g), sympy.sympify(T), tuple(xs))
+    if key in _HOMOGENEOUS_CACHE:
+        return _HOMOGENEOUS_CACHE[key]
+    out = _homogeneous_sup_uncached(g, T, xs, seconds)
+    if out[0] is not None:
+        _HOMOGENEOUS_CACHE[key] = out
+    return out
+
+
+def _homogeneous_sup_uncached(g, T, xs, seconds):
     from ..bounds import sup_bound
     from ...options import Budget
 

@@ -1559,7 +1559,11 @@ def _witness(model: _Model, records, zexact, zballs, A, coefficients) -> Witness
         d = sympy.diff(model.rhs_z.xreplace(ones), c)
         if d != 0:
             terms[f"rhs [coefficient of {c}]"] = _mid(_ball(d, zballs))
-    measures = {m.name: _mid(_ball(model.measure_z[m.symbol], zballs)) for m in problem.measures}
+    measures = {}
+    for m in problem.measures:  # shown with the witness; one not written in the witness's coordinates is left out
+        e = sympy.sympify(model.measure_z[m.symbol])
+        if e.free_symbols <= set(zballs):
+            measures[m.name] = _mid(_ball(e, zballs))
     texts = {}
     for st in problem.states:
         texts[st.name] = st.text

@@ -1,0 +1,361 @@
+"""Rewrites of a bound already derived: the small steps between a paper's estimates.
+
+A :class:`~lkverify.certify.steps.chain.TermBound` applies its rule, then each rewrite
+of ``then=`` in turn to the bound so far.  Every rewrite here is an inequality with its
+side conditions checked exactly (structurally, on nonnegative measures):
+
+* :class:`YoungEach` — Young's inequality on every additive term c·x·y that matches one of
+  the given pairs (x, y), the sign of c checked against the direction;
+* :class:`OnRegion` — x^a ≤ h^{a−k} x^k for a measure x ≤ h on the region (a ≥ k);
+* :class:`WindowHolder` — ∫‖v‖^k ≤ h^{1−k/P}(∫‖v‖^P)^{k/P} (Hölder on the window);
+* :class:`PowerSplit` — (ΣA_i)^ν ≥ A_k^ν for A_i ≥ 0, ν > 0, in each term of the bound;
+* :class:`LowerBound` — a measure replaced by a lower bound that a certified lemma gives on
+  the region (e.g. (10) of paper 000: ‖L‖² ≥ ε(α1²‖s1−r1‖² + α2²‖s2−r2‖²)).
+
+Substituting a bound for a measure is sound only where the expression is monotone in it;
+that is checked by the sign of the partial derivative (structurally nonnegative for all
+nonnegative measures and positive parameters).
+
+Examples
+--------
+>>> import sympy
+>>> from lkverify import Equation, Parameters, System, Term, Vector, t
+>>> from lkverify.certify.steps.measures import Region, norm_measure, sup_norm
+>>> from lkverify.certify.steps.rules import Context
+>>> P = Parameters(); x, y = Vector("x", 2), Vector("y", 2)
+>>> sys_ = System([Equation(x, [Term(-x(t))]), Equation(y, [Term(-y(t))])], parameters=P)
+>>> a, b = norm_measure("a", x(t)), norm_measure("b", y(t))
+>>> ctx = Context(sys_, P.resolve({}), {"a": a, "b": b}, Region({a: sympy.Rational(1, 10)}))
+>>> A, B = a.symbol, b.symbol
+>>> YoungEach(((A, B),)).rewrite(6 * A * B - B**2, ctx).bound          # 6ab ≤ 3a² + 3b²
+3*a**2 + 2*b**2
+>>> OnRegion("a", 2).rewrite(5 * A**3 * B, ctx).bound                  # a³ ≤ (1/10)a² on a ≤ 1/10
+a**2*b/2
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Callable
+
+import sympy
+
+from ...status import Status
+from .rules import Application, Condition, Rule, _cond, nonnegative
+
+__all__ = ["LowerBound", "OnRegion", "PowerSplit", "WindowHolder", "YoungEach"]
+
+
+def _measure_symbols(ctx) -> set:
+    return {m.symbol for m in ctx.measures.values()}
+
+
+def _split(expr, symbols):
+    """[(c, monomial)] for the additive terms of expr: c free of ``symbols``."""
+    out = []
+    for term in sympy.Add.make_args(sympy.expand(expr)):
+        c, m = sympy.S.One, sympy.S.One
+        for f in sympy.Mul.make_args(term):
+            if f.free_symbols & symbols:
+                m *= f
+            else:
+                c *= f
+        out.append((c, m))
+    return out
+
+
+def _signed(c, direction) -> bool | None:
+    """Is the constant c of the sign that lets a bound x·y ≤ B be used in this direction (upper: c ≥ 0)?"""
+    target = c if direction == "upper" else -c
+    if nonnegative(target):
+        return True
+    if nonnegative(-target) and target != 0:
+        return False
+    return None
+
+
+def _monotone(expr, symbol, increasing: bool) -> bool:
+    """Is expr structurally nondecreasing (``increasing``) or nonincreasing in ``symbol`` ≥ 0?"""
+    d = sympy.diff(expr, symbol)
+    d = d if increasing else -d
+    return d == 0 or nonnegative(sympy.factor_terms(d)) or nonnegative(sympy.expand(d))
+
+
+def _substitute(previous, symbol, replacement, side: str, direction: str, what: str):
+    """(bound, conditions): ``symbol`` replaced by ``replacement`` (symbol ≤ it for side "upper", ≥ for "lower")."""
+    increasing = (side == "upper") == (direction == "upper")
+    ok = _monotone(previous, symbol, increasing)
+    cond = _cond(f"the bound is {'nondecreasing' if increasing else 'nonincreasing'} in {symbol}, so {what} may "
+                 f"replace it", ok or None, f"∂/∂{symbol} of {previous} is not shown to have that sign")
+    return sympy.expand(previous.xreplace({symbol: replacement})), [cond]
+
+
+@dataclasses.dataclass(frozen=True)
+class YoungEach(Rule):
+    """c·x·y ≤ c(ε x^p/p + ε^{−q/p} y^q/q) on every additive term c·x·y matching one of ``pairs``.
+
+    ``pairs``: tuples (x, y) or (x, y, p, q, ε) in measures (p = q = 2, ε = 1 by default;
+    ε may be an expression in the parameters).  For an upper bound c ≥ 0 is required, for a
+    lower bound c ≤ 0 (then c·x·y ≥ c(…)).  Terms that match no pair are kept.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
+    >>> from lkverify.certify.steps.measures import norm_measure
+    >>> from lkverify.certify.steps.rules import Context
+    >>> P = Parameters(); x, y = Vector("x", 2), Vector("y", 2)
+    >>> sys_ = System([Equation(x, [Term(-x(t))]), Equation(y, [Term(-y(t))])], parameters=P)
+    >>> a, b = norm_measure("a", x(t)), norm_measure("b", y(t)); A, B = a.symbol, b.symbol
+    >>> ctx = Context(sys_, P.resolve({}), {"a": a, "b": b})
+    >>> YoungEach(((A, B, 2, 2, sympy.Rational(1, 2)),)).rewrite(-4 * A * B, ctx, "lower").bound
+    -a**2 - 4*b**2
+    >>> YoungEach(((A, B),)).rewrite(-4 * A * B, ctx, "upper").status.value    # −4ab ≤ … needs c ≥ 0
+    'failed'
+    """
+
+    pairs: tuple
+    name = "Young's inequality with a parameter, term by term"
+    directional = True
+
+    def _pairs(self, ctx):
+        out = []
+        for pair in self.pairs:
+            x, y, p, q, eps = (tuple(pair) + (2, 2, 1)[len(pair) - 2:])[:5]
+            out.append(tuple(ctx.at(v) for v in (x, y, p, q, eps)))
+        return out
+
+    def rewrite(self, previous, ctx, direction: str = "upper") -> Application:
+        syms = _measure_symbols(ctx)
+        pairs = self._pairs(ctx)
+        conds, total, used = [], sympy.S.Zero, 0
+        for x, y, p, q, eps in pairs:
+            conds.append(_cond(f"p = {p}, q = {q} conjugate (1/p + 1/q = 1), p > 1",
+                               bool(sympy.simplify(1 / p + 1 / q - 1) == 0) and bool(p > 1),
+                               f"1/p + 1/q = {sympy.simplify(1 / p + 1 / q)}"))
+            conds.append(_cond(f"ε = {eps} > 0", bool(eps.is_positive) or None))
+            conds.append(_cond(f"{x}, {y} ≥ 0", nonnegative(x) and nonnegative(y)))
+        for c, m in _split(ctx.at(previous), syms):
+            for x, y, p, q, eps in pairs:
+                ratio = sympy.powsimp(sympy.expand_power_base(m / (x * y), force=True), force=True)
+                if ratio.free_symbols & syms:
+                    continue
+                c = c * ratio
+                ok = _signed(c, direction)
+                conds.append(_cond(f"the coefficient {c} of ({x})·({y}) is {'≥' if direction == 'upper' else '≤'} 0",
+                                   ok, "it has the other sign"))
+                total += c * (eps * x**p / p + eps ** (-q / p) * y**q / q)
+                used += 1
+                break
+            else:
+                total += c * m
+        conds.append(_cond("some term is a product x·y of a pair", used > 0, f"no term of {previous} matches"))
+        return Application(self.name, sympy.expand(total), tuple(conds))
+
+    def apply(self, term, direction, ctx):
+        return self.rewrite(ctx.at(term), ctx, direction)
+
+
+@dataclasses.dataclass(frozen=True)
+class OnRegion(Rule):
+    """x^a ≤ h^{a−k}·x^k on the region x ≤ h, for every term with x^a, a > k (``keep`` = k).
+
+    The term's other factor must have the sign that lets the smaller power replace the larger
+    (≥ 0 in an upper bound, ≤ 0 in a lower bound); h is the region's bound on the measure
+    (:meth:`~lkverify.certify.steps.measures.Region.bound_of`: a norm at t or t − c, a window
+    integral or norm, from the sup over the window).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
+    >>> from lkverify.certify.steps.measures import Region, norm_measure
+    >>> from lkverify.certify.steps.rules import Context
+    >>> P = Parameters(); x = Vector("x", 2); a = norm_measure("a", x(t)); A = a.symbol
+    >>> ctx = Context(System([Equation(x, [Term(-x(t))])], parameters=P), P.resolve({}), {"a": a},
+    ...               Region({a: sympy.Rational(1, 4)}))
+    >>> OnRegion("a", 2).rewrite(-A**3, ctx, "lower").bound              # −a³ ≥ −a²/4
+    -a**2/4
+    >>> OnRegion("a", 2).rewrite(-A**3, ctx, "upper").status.value       # −a³ ≤ −a²/4 is false
+    'failed'
+    """
+
+    measure: str
+    keep: object = 0
+    name = "a power lowered on the region (x ≤ h ⇒ x^a ≤ h^{a−k}x^k)"
+    directional = True
+
+    def rewrite(self, previous, ctx, direction: str = "upper") -> Application:
+        m = ctx.measure(self.measure)
+        x, k = m.symbol, ctx.at(self.keep)
+        h = None if ctx.region is None else ctx.region.bound_of(m, ctx.sub)
+        conds = [_cond(f"the region bounds {m.text}", h is not None, "no bound on it follows from the region")]
+        if h is None:
+            return Application(self.name, None, tuple(conds))
+        h = ctx.at(h)
+        conds.append(_cond(f"{m.text} ≤ {h}, h ≥ 0", nonnegative(h)))
+        syms = _measure_symbols(ctx)
+        total, used = sympy.S.Zero, 0
+        for c, mono in _split(ctx.at(previous), syms):
+            powers = sympy.powsimp(mono, force=True).as_powers_dict()
+            a = powers.get(x, sympy.S.Zero)
+            if not (sympy.sympify(a - k).is_positive):
+                total += c * mono
+                continue
+            rest = c * mono / x**a
+            ok = _signed(rest, direction)
+            conds.append(_cond(f"the factor {rest} of {x}^{a} is {'≥' if direction == 'upper' else '≤'} 0", ok,
+                               "it has the other sign"))
+            total += rest * h ** (a - k) * x**k
+            used += 1
+        conds.append(_cond(f"some term has a power of {x} above {k}", used > 0, f"none in {previous}"))
+        return Application(self.name, sympy.expand(total), tuple(conds))
+
+    def apply(self, term, direction, ctx):
+        return self.rewrite(ctx.at(term), ctx, direction)
+
+
+@dataclasses.dataclass(frozen=True)
+class WindowHolder(Rule):
+    """∫_{t−h}^t‖v‖^k ≤ h^{1−k/P}(∫_{t−h}^t‖v‖^P)^{k/P} (Hölder, P ≥ k): measure ``source`` by ``target``.
+
+    ``source`` is a window integral of order k, ``target`` a window integral of order P of the
+    same vector over the same window; the bound must be monotone in the source (checked).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, t, xi
+    >>> from lkverify.certify.steps.measures import norm_measure, window_integral_measure
+    >>> from lkverify.certify.steps.rules import Context
+    >>> P = Parameters(); x, y = Vector("x", 2), Vector("y", 2)
+    >>> sys_ = System([Equation(x, [Term(-x(t))]), Equation(y, [Term(-y(t))])], parameters=P)
+    >>> K, I = (window_integral_measure(n, x(xi), p=p, window=4) for n, p in (("K", 1), ("I", 2)))
+    >>> w = norm_measure("w", y(t)); ctx = Context(sys_, P.resolve({}), {"K": K, "I": I, "w": w})
+    >>> WindowHolder("K", "I").rewrite(3 * w.symbol * K.symbol, ctx).bound     # ∫‖x‖ ≤ 2(∫‖x‖²)^{1/2}
+    6*sqrt(I)*w
+    """
+
+    source: str
+    target: str
+    name = "Hölder on the window (∫‖v‖^k ≤ h^{1−k/P}(∫‖v‖^P)^{k/P})"
+    directional = True
+
+    def rewrite(self, previous, ctx, direction: str = "upper") -> Application:
+        src, tgt = ctx.measure(self.source), ctx.measure(self.target)
+        k, P = ctx.at(src.power), ctx.at(tgt.power)
+        h = ctx.at(src.window)
+        same = (src.kind == "window_integral" and tgt.kind == "window_integral" and src.vector == tgt.vector
+                and sympy.simplify(h - ctx.at(tgt.window)) == 0)
+        conds = [_cond(f"{src.name}, {tgt.name}: window integrals of one vector over one window", same,
+                       f"{src.kind} of {src.vector.T}, {tgt.kind} of {tgt.vector.T}"),
+                 _cond(f"orders k = {k} ≤ P = {P}", bool(sympy.sympify(P - k).is_nonnegative) and bool(k > 0)),
+                 _cond(f"window length {h} ≥ 0", nonnegative(h))]
+        bound, more = _substitute(ctx.at(previous), src.symbol, h ** (1 - k / P) * tgt.symbol ** (k / P), "upper",
+                                  direction, f"h^(1−k/P)·{tgt.name}^(k/P) ≥ {src.name}")
+        return Application(self.name, bound, tuple(conds + more))
+
+    def apply(self, term, direction, ctx):
+        return self.rewrite(ctx.at(term), ctx, direction)
+
+
+@dataclasses.dataclass(frozen=True)
+class PowerSplit(Rule):
+    """(A_1 + … + A_n)^ν ≥ A_k^ν (A_i ≥ 0, ν > 0) in every additive term c·(ΣA_i)^ν·R of the bound.
+
+    A_k is the summand whose measures R contains (the first summand otherwise); c·R must be
+    ≤ 0 in an upper bound (≥ 0 in a lower one), so that the smaller power may replace the
+    larger.  Applied to −c7 f^ν(α1²e1² + α2²e2²) it gives −c7((α1/2)^ν α1² e1^{2ν+2} + …).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
+    >>> from lkverify.certify.steps.measures import norm_measure
+    >>> from lkverify.certify.steps.rules import Context
+    >>> P = Parameters(); x, y = Vector("x", 2), Vector("y", 2)
+    >>> sys_ = System([Equation(x, [Term(-x(t))]), Equation(y, [Term(-y(t))])], parameters=P)
+    >>> a, b = norm_measure("a", x(t)), norm_measure("b", y(t)); A, B = a.symbol, b.symbol
+    >>> ctx = Context(sys_, P.resolve({}), {"a": a, "b": b})
+    >>> PowerSplit().rewrite(-(A**2 + B**2) ** sympy.Rational(1, 2) * (A**2 + 2 * B**2), ctx).bound
+    -a**3 - 2*b**3
+    >>> PowerSplit().rewrite((A**2 + B**2) ** sympy.Rational(1, 2) * A, ctx).status.value   # c·R ≥ 0: wrong way
+    'failed'
+    """
+
+    name = "(ΣA_i)^ν ≥ A_k^ν for A_i ≥ 0, ν > 0 (a power of a sum split)"
+    directional = True
+
+    def rewrite(self, previous, ctx, direction: str = "upper") -> Application:
+        syms = _measure_symbols(ctx)
+        conds, total, used = [], sympy.S.Zero, 0
+        for term in sympy.Add.make_args(sympy.expand(ctx.at(previous))):
+            factors = sympy.Mul.make_args(term)
+            pw = [f for f in factors if isinstance(f, sympy.Pow) and isinstance(f.base, sympy.Add)
+                  and f.base.free_symbols & syms and not f.exp.free_symbols & syms]
+            if len(pw) != 1:
+                total += term
+                continue
+            power = pw[0]
+            rest = sympy.Mul(*[f for f in factors if f is not power])
+            A = list(sympy.Add.make_args(power.base))
+            own = rest.free_symbols & syms
+            pick = next((x for x in A if x.free_symbols & syms and x.free_symbols & syms <= own), A[0])
+            conds.append(_cond(f"the summands of {power.base} are ≥ 0 and ν = {power.exp} > 0",
+                               all(nonnegative(x) for x in A) and bool(sympy.sympify(power.exp).is_positive)))
+            ok = _signed(-rest, direction)
+            conds.append(_cond(f"the factor {rest} is {'≤' if direction == 'upper' else '≥'} 0", ok,
+                               "it has the other sign"))
+            total += rest * sympy.powsimp(sympy.expand_power_base(pick ** power.exp, force=True), force=True)
+            used += 1
+        conds.append(_cond("some term has a power of a sum of measures", used > 0, f"none in {previous}"))
+        return Application(self.name, sympy.expand(total), tuple(conds))
+
+    def apply(self, term, direction, ctx):
+        return self.rewrite(ctx.at(term), ctx, direction)
+
+
+@dataclasses.dataclass(frozen=True)
+class LowerBound(Rule):
+    """A measure m replaced by a lower bound ℓ ≤ m that a certified lemma gives on the region.
+
+    ``certify(ctx)`` decides the lemma at the checked values and region and returns a
+    :class:`~lkverify.certify.steps.rules.Condition` (certified, failed or undecided);
+    ``bound`` is ℓ in the other measures.  The bound so far must be nonincreasing in m for an
+    upper bound (nondecreasing for a lower one), checked structurally.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
+    >>> from lkverify.certify.steps.measures import norm_measure
+    >>> from lkverify.certify.steps.rules import Condition, Context
+    >>> from lkverify.status import Status
+    >>> P = Parameters(); x = Vector("x", 2); a, n = norm_measure("a", x(t)), norm_measure("n", 2 * x(t))
+    >>> ctx = Context(System([Equation(x, [Term(-x(t))])], parameters=P), P.resolve({}), {"a": a, "n": n})
+    >>> lemma = lambda ctx: Condition("‖2x‖ ≥ ‖x‖", Status.EXACT)
+    >>> LowerBound("n", a.symbol, lemma, "‖2x‖ ≥ ‖x‖").rewrite(-3 * n.symbol**2, ctx).bound
+    -3*a**2
+    >>> LowerBound("n", a.symbol, lemma, "‖2x‖ ≥ ‖x‖").rewrite(3 * n.symbol**2, ctx).status.value
+    'undecided'
+    """
+
+    measure: str
+    bound: object
+    certify: Callable
+    text: str = "a lemma"
+    name = "a lower bound from a certified lemma"
+    directional = True
+
+    def rewrite(self, previous, ctx, direction: str = "upper") -> Application:
+        m = ctx.measure(self.measure)
+        lemma = self.certify(ctx)
+        if not isinstance(lemma, Condition):
+            lemma = Condition(self.text, Status.UNDECIDED, f"the lemma's check returned {type(lemma).__name__}")
+        bound, more = _substitute(ctx.at(previous), m.symbol, ctx.at(self.bound), "lower", direction,
+                                  f"{self.text} (a lower bound)")
+        return Application(self.name, bound, (lemma, *more))
+
+    def apply(self, term, direction, ctx):
+        return self.rewrite(ctx.at(term), ctx, direction)
+
