@@ -48,6 +48,7 @@ from .theorem3_caps import theorem3_caps
 from .fig7_chi import fig7_chi
 from .section6 import FIG7_HISTORY, PRINTED_15, R_TARGET, SECTION6
 from .theorem3_constants import THEOREM3_CONSTANTS
+from .section6_conditions import section6
 
 __all__ = [
     "PAPER",
@@ -58,5 +59,5 @@ __all__ = [
     "functional", "structured_Vdot", "theorem3", "THEOREM3_CONSTANTS", "theorem3_bound", "theorem3_caps",
     # section 6
     "R_TARGET", "SECTION6", "FIG7_HISTORY", "PRINTED_15",
-    "fig1", "fig2", "fig3", "fig4", "fig5", "fig6", "fig7", "fig7_chi",
+    "fig1", "fig2", "fig3", "fig4", "fig5", "fig6", "fig7", "fig7_chi", "section6",
 ]

@@ -16,7 +16,7 @@ g = e^{−2ζ}.
 from lkverify import Frame, Parameters, System, Term, Vector, memory_integral, t, xi
 from lkverify.declare.rigidbody import distance_sum, euler_equation, poisson_equations, restoring_torque
 
-__all__ = ["PAPER", "P", "Theta", "D", "alpha1", "alpha2", "nu", "tau", "r1", "r2", "r3", "gamma", "lam", "mu", "beta", "g",
+__all__ = ["PAPER", "P", "Theta", "D", "alpha1", "alpha2", "nu", "tau", "r1", "r2", "r3", "gamma", "lam", "mu", "epsilon", "delta", "eta_w", "eta_K", "eta", "beta", "g",
            "omega", "s1", "s2", "s3", "L", "f", "W", "D_inv", "system", "system_pid"]
 
 PAPER = "aleksandrov2026"
@@ -36,6 +36,13 @@ P.orthonormal("r1", "r2", "r3")
 gamma = P.scalar("gamma", positive=True, latex=r"\gamma")
 lam = P.scalar("lam", positive=True, latex=r"\lambda")
 mu = P.scalar("mu", positive=True, latex=r"\mu")
+# the proof's other free choices (Theorem 1): ε of (10), the region δ, and Young's parameters of its steps
+epsilon = P.scalar("epsilon", positive=True, latex=r"\epsilon", description="ε ∈ (0, 1) of inequality (10)")
+delta = P.scalar("delta", positive=True, latex=r"\delta",
+                 description="the region: ‖s_i(ξ) − r_i‖ ≤ δ on [t − τ, t], i = 1, 2")
+eta_w = P.scalar("eta_w", positive=True, latex=r"\eta_\omega", description="Young's parameter of V ≥ L (ω terms)")
+eta_K = P.scalar("eta_K", positive=True, latex=r"\eta_K", description="Young's parameter of V ≥ L (memory terms)")
+eta = P.scalar("eta", positive=True, latex=r"\eta", description="Young's parameter of V̇ ≤ W")
 # section 4: the nonlinear PID (8), (13)
 beta = P.scalar("beta", default=1, latex=r"\beta", description="proportional gain β (β ≤ 0 allowed)")
 g = P.kernel("g", default="exp(-2*zeta)", description="memory kernel, G(ζ) = g(ζ) I")

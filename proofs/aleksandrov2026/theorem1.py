@@ -11,26 +11,16 @@ term by term; the one liberty is its ``ω^⊤(t) L^⊤(t−τ)``, a row times a 
 scalar product ωᵀL(t−τ).  Whatever the comparison with the derivation finds is the result.
 """
 
-from lkverify import (DerivativeClaim, Functional, Hypothesis, Term, Theorem, cross, dot, quad, t, window_integral,
-                      xi)
+from lkverify import DerivativeClaim, Hypothesis, Term, Theorem, cross, dot, quad, t, window_integral, xi
 from lkverify.declare.rigidbody import restoring_torque_rate
 
 from .equations import (PAPER, D, D_inv, L, Theta, W, alpha1, alpha2, f, gamma, lam, mu, nu, omega, r1, r2, s1, s2, system,
                         tau)
+from .functional9 import functional, int_fL
+from .theorem1_bound import derivation  # V̇ in the structured form, exact
+from .theorem1_chain import CONCLUSION, optimal_choices, steps
 
-__all__ = ["functional", "printed_Vdot", "theorem1", "int_fL"]
-
-int_fL = window_integral(f(xi) ** nu * L(xi), tau)  # ∫_{t−τ}^t f^ν(ξ)L(ξ)dξ
-
-# (9)
-functional = Functional([
-    Term(f(t), text="f", latex="f"),
-    Term(gamma / 2 * quad(omega(t), Theta), text="(γ/2)ωᵀΘω", latex=r"\frac{\gamma}{2}\omega^\top\Theta\omega"),
-    Term(quad(L(t), D_inv * Theta, omega(t)), text="LᵀD⁻¹Θω", latex=r"L^\top D^{-1}\Theta\omega"),
-    Term(window_integral(W(xi), tau, weight=lam * (xi + tau - t) + mu), text="∫(λ(ξ+τ−t)+μ)(‖s1−r1‖^{2ν+2}+‖s2−r2‖^{2ν+2})dξ",
-         latex=r"\int_{t-\tau}^t(\lambda(\xi+\tau-t)+\mu)(\|s_1-r_1\|^{2\nu+2}+\|s_2-r_2\|^{2\nu+2})d\xi"),
-    Term(-quad(L(t), D_inv, int_fL), text="−LᵀD⁻¹∫f^ν(ξ)L(ξ)dξ", latex=r"-L^\top D^{-1}\int_{t-\tau}^t f^\nu(\xi)L(\xi)d\xi"),
-], name="(9)")
+__all__ = ["functional", "printed_Vdot", "printed_claim", "theorem1", "int_fL"]
 
 M = restoring_torque_rate(omega, (s1, s2), (r1, r2), (alpha1, alpha2))  # α1(ω×s1)×r1 + α2(ω×s2)×r2 = −L̇ by (2)
 
@@ -53,15 +43,24 @@ printed_Vdot = [
          latex=r"-\mu(\|s_1(t-\tau)-r_1\|^{2\nu+2}+\|s_2(t-\tau)-r_2\|^{2\nu+2})"),
 ]
 
+#: the printed V̇, compared with the derivation: a finding about the paper, not a link
+_row, _col = omega(t).T.shape, L(t - tau).T.shape  # the printed ω^⊤(t)L^⊤(t−τ): a row times a row
+printed_claim = DerivativeClaim(
+    "Vdot_printed", functional, system, printed_Vdot,
+    description=f"the printed V̇ along (2),(7), as printed (its ω^⊤(t)L^⊤(t−τ) is a {_row[0]}×{_row[1]} row times a "
+                f"{_col[0]}×{_col[1]} row, undefined: a transposition typo, read as ωᵀL(t−τ))")
+
 theorem1 = Theorem(
     "theorem1",
-    title="Theorem 1: delayed nonlinear restoring torque, stable for every τ > 0 (printed V̇ checked)",
+    title="Theorem 1: delayed nonlinear restoring torque, stable for every τ > 0 (the proof checked to the end)",
     system=system,
     functional=functional,
     hypotheses=[Hypothesis("tau > 0", tau), Hypothesis("nu > 0", nu),
                 Hypothesis("alpha1 > 0", alpha1), Hypothesis("alpha2 > 0", alpha2)],
-    claims=[DerivativeClaim("Vdot_printed", functional, system, printed_Vdot,
-                            description="the printed V̇ along (2),(7), as printed")],
-    unchecked=["the bounds with c1…c10, inequality (10) and the estimates (11), (12)"],
+    claims=[derivation],
+    printed=[printed_claim],
+    steps=steps,
+    decay=CONCLUSION,
+    choices=optimal_choices,
     paper=PAPER,
 )

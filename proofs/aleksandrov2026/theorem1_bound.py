@@ -29,7 +29,7 @@ from lkverify.declare.rigidbody import restoring_torque_rate
 
 from .equations import (PAPER, P, D, D_inv, L, Theta, W, alpha1, alpha2, f, gamma, lam, mu, nu, omega, r1, r2, s1, s2,
                         system, tau)
-from .theorem1 import functional, int_fL
+from .functional9 import functional, int_fL
 
 __all__ = ["structured_Vdot", "derivation", "printed_bound", "theorem1_bound"]
 

@@ -8,6 +8,7 @@ import sympy
 
 from lkverify import Hypothesis, MatrixHypothesis, Theorem, zeta
 
+from .assumption1 import Assumption1
 from .equations import PAPER, D, beta, g, system_pid
 
 __all__ = ["theorem2", "Xi"]
@@ -20,7 +21,8 @@ theorem2 = Theorem(
     title="Theorem 2: nonlinear PID with a fading-memory kernel; Assumption 2 checked with its margin",
     system=system_pid,
     hypotheses=[MatrixHypothesis("Xi*D + D*Xi^T > 0", Xi * D + D * Xi.T, reference="(Assumption 2)"),
-                Hypothesis("beta + int g > 0", beta + int_g, reference="(Remark 3)")],
-    unchecked=["Assumption 1 (∫_ζ^∞|G| ≤ σ|G(ζ)|)", "functional (14) and the bounds with c1…c12"],
+                Hypothesis("beta + int g > 0", beta + int_g, reference="(Remark 3)"),
+                Assumption1("Assumption 1", g, reference="(Assumption 1)")],
+    unchecked=["functional (14) and the bounds with c1…c12"],
     paper=PAPER,
 )

@@ -90,7 +90,7 @@ def test_theorem3_wrong_coefficient_is_refuted(theorem3_derived):
 def test_theorem1_printed_vdot_differs_in_exactly_one_sign():
     """Paper 000 prints +γ f^ν(t−τ) ωᵀL(t−τ); the derivation gives −γ f^ν(t−τ) ωᵀL(t−τ)."""
     th = item("aleksandrov2026.theorem1")
-    claim = th.claims[0]
+    claim = th.printed[0]
     res = claim.check({}, values={}, budget=120)
     assert res.status is Status.FAILED
     (diff,) = res.differences
@@ -101,7 +101,7 @@ def test_theorem1_printed_vdot_differs_in_exactly_one_sign():
 
 def test_theorem1_printed_vdot_with_that_sign_corrected_is_exact():
     th = item("aleksandrov2026.theorem1")
-    claim = th.claims[0]
+    claim = th.printed[0]
     terms = [Term(-term.expr, text="−γf^ν(t−τ)ωᵀL(t−τ)") if term.text.startswith("+γf^ν") else term
              for term in claim.terms]
     res = dataclasses.replace(claim, terms=tuple(terms)).check({}, values={}, budget=120)

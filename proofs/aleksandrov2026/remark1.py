@@ -1,0 +1,167 @@
+"""Remark 1 of paper 000, made quantitative: the region δ that the proof of Theorem 1 certifies.
+
+Remark 1: "… an increase of the delay leads to a decrease of the value δ that determines the
+region in which the estimates (11), (12) hold.  … In such situations, to stabilise the
+programmed orientation one has to increase the parameters α1, α2 of the control torque."
+
+For each delay τ (and each scaling k of α1 = kα1⁰, α2 = kα2⁰) the proof's free choices are
+optimised (:func:`~lkverify.proofs.aleksandrov2026.theorem1_chain.optimal_choices`, a
+geometric programme) to maximise δ, and the whole chain (V ≥ L, V ≤ U, V̇ ≤ W, Krasovskii) is then proved at those exact
+choices: the δ reported is certified.  It is the δ *this proof* certifies — a lower bound on
+the largest region where (11), (12) hold — so comparing two of them supports or does not
+support the remark; it cannot refute it.
+
+The bare check evaluates three points (τ = 1/4 and 4 at the run's α, and 4α at τ = 4); the
+whole table (τ ∈ {1/4, 1/2, 1, 2, 4} × k ∈ {1, 2, 4}) and its figure are the constants job:
+``lkverify constants aleksandrov2026.remark1 --plot delta_tau.png``.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import sympy
+
+from lkverify import Check, Report, Result, Status
+
+from .equations import PAPER, P
+from .theorem1_chain import CONCLUSION, optimal_choices, steps
+
+__all__ = ["TAUS", "SCALES", "certified_delta", "remark1"]
+
+TAUS = ("1/4", "1/2", "1", "2", "4")
+SCALES = ("1", "2", "4")
+_CHOICES = ("gamma", "lam", "mu", "epsilon", "delta", "eta_w", "eta_K", "eta")
+
+
+def _gains(values, tau, scale):
+    """The run's gains with τ and α1, α2 scaled by ``scale`` (exact)."""
+    given = {k: v for k, v in values.items() if k not in _CHOICES}
+    k = sympy.Rational(scale)
+    return {**given, "tau": sympy.Rational(tau), "alpha1": k * given["alpha1"], "alpha2": k * given["alpha2"]}
+
+
+def certified_delta(values, *, budget=60.0) -> Result:
+    """The region δ the proof of Theorem 1 certifies at these gains (choices optimised, chain proved).
+
+    Returns
+    -------
+    Result
+        kind ``region``; ``value`` = {"delta", "tau", "alpha1", "alpha2", "choices", "seconds"};
+        status certified when every step and the Krasovskii conditions are proved.
+
+    Examples
+    --------
+    >>> r = certified_delta(P.resolve({"tau": "4"}, use_defaults=True))
+    >>> r.status.value, 1e-5 < r.value["delta"] < 1e-3
+    ('certified', True)
+    """
+    start = time.perf_counter()
+    base = P.resolve({k: v for k, v in values.items() if k not in _CHOICES}, use_defaults=True)
+    choices = optimal_choices(base)
+    at = P.resolve({**{k: v for k, v in values.items() if k not in _CHOICES}, **choices}, use_defaults=True)
+    checked = {s.role: (s, s.check(at, budget=budget)) for s in steps}
+    bad = [f"{s.name}: {res.detail}" for s, res in checked.values() if not res.status.is_proof]
+    if bad:
+        status, detail = Status.UNDECIDED, "; ".join(bad)
+    else:
+        _, status, detail = CONCLUSION.certify(checked, at)
+    d = sympy.Rational(choices["delta"])
+    name = f"delta(tau={at['tau']}, alpha1={at['alpha1']}, alpha2={at['alpha2']})"
+    value = {"delta": float(d), "delta_exact": str(d), "tau": float(at["tau"]), "alpha1": float(at["alpha1"]),
+             "alpha2": float(at["alpha2"]), "choices": choices, "seconds": time.perf_counter() - start}
+    text = (f"the proof of Theorem 1 certifies (11), (12) on ‖s_i(ξ) − r_i‖ ≤ δ = {float(d):.3g} (choices optimised: "
+            f"γ = {choices['gamma']}, λ = {choices['lam']}, μ = {choices['mu']}): {detail}")
+    return Result("region", name, status, value, text)
+
+
+def _compare(a: Result, b: Result, what: str, claim: str, expect_smaller: bool) -> Result:
+    """A row comparing two certified δ with the remark's statement (estimated: they are lower bounds)."""
+    if not (a.status.is_proof and b.status.is_proof):
+        return Result("region", what, Status.UNDECIDED, None, f"{claim}: a δ is not certified")
+    da, db = a.value["delta"], b.value["delta"]
+    smaller = db < da
+    agrees = smaller == expect_smaller
+    return Result("region", what, Status.ESTIMATED, {"ratio": db / da},
+                  f"{claim}: the certified δ goes from {da:.3g} to {db:.3g} (×{db / da:.3g}), which "
+                  f"{'supports' if agrees else 'does not support'} the remark; both are what this proof certifies "
+                  f"(lower bounds on the largest region), so the comparison is evidence, not a proof")
+
+
+def _remark1_check(v, *, budget=60.0):
+    low, high = certified_delta(_gains(v, "1/4", 1)), certified_delta(_gains(v, "4", 1))
+    strong = certified_delta(_gains(v, "4", 4))
+    rows = [low, high, strong,
+            _compare(low, high, "Remark 1: δ decreases as τ grows",
+                     "“an increase of the delay leads to a decrease of δ” (τ = 1/4 → 4)", True),
+            _compare(high, strong, "Remark 1: larger α1, α2 help at a large delay",
+                     "“one has to increase α1, α2” (α × 4 at τ = 4)", False)]
+    return rows
+
+
+class Remark1Table:
+    """The constants job of Remark 1: δ over τ ∈ :data:`TAUS` × α scaled by :data:`SCALES`, and its figure.
+
+    It has the interface ``lkverify constants`` expects (``goals``, ``run``, ``plot``).
+    """
+
+    goals = ["default"]
+
+    def run(self, item_name, values, shown, *, budget=300.0, progress=None, goal=None):
+        """Certify δ at every grid point within ``budget`` seconds (points left over are undecided)."""
+        start = time.perf_counter()
+        results = []
+        for scale in SCALES:
+            for tau in TAUS:
+                gains = _gains(values, tau, scale)
+                name = f"delta(tau={gains['tau']}, alpha1={gains['alpha1']}, alpha2={gains['alpha2']})"
+                if time.perf_counter() - start > budget:
+                    results.append(Result("region", name, Status.UNDECIDED, None,
+                                          f"not computed: the budget of {budget:g} s was spent"))
+                    continue
+                if progress:
+                    progress(f"{item_name}: δ at τ = {tau}, α × {scale}")
+                results.append(certified_delta(gains))
+        bad = [r.name for r in results if not r.status.is_proof]
+        verdict = "certified δ(τ, α) at every grid point" if not bad else f"undecided: {', '.join(bad)}"
+        return Report(item_name, dict(shown), tuple(results), verdict), {"results": results}
+
+    def plot(self, extra, path, *, values=None):
+        """δ against τ (log–log), one curve per α scaling; open markers where a point is not certified."""
+        from matplotlib.figure import Figure
+
+        fig = Figure(figsize=(7.0, 4.6))
+        ax = fig.subplots()
+        rows = [r for r in extra["results"] if r.value]
+        for scale in SCALES:
+            pts = [r for r in rows if abs(r.value["alpha1"] / float(sympy.Rational(scale)) -
+                                          _base_alpha(rows)) < 1e-9]
+            if not pts:
+                continue
+            taus = np.array([r.value["tau"] for r in pts])
+            ds = np.array([r.value["delta"] for r in pts])
+            ok = np.array([r.status.is_proof for r in pts])
+            line, = ax.loglog(taus, ds, "-", lw=1.4, label=rf"$\alpha_1 = \alpha_2 = {pts[0].value['alpha1']:g}$")
+            ax.loglog(taus[ok], ds[ok], "o", color=line.get_color())
+            ax.loglog(taus[~ok], ds[~ok], "o", mfc="none", color=line.get_color())
+        ticks = [float(sympy.Rational(x)) for x in TAUS]
+        ax.set_xticks(ticks, labels=list(TAUS))
+        ax.set_xticks([], minor=True)
+        ax.set_xlabel(r"delay $\tau$")
+        ax.set_ylabel(r"certified $\delta$ (region $\|s_i(\xi) - r_i\| \leq \delta$)")
+        ax.set_title("Remark 1 of paper 000: the region the proof of Theorem 1 certifies\n"
+                     "(choices optimised at each point; filled: certified)", fontsize=10)
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(fontsize=8, loc="lower left")
+        fig.tight_layout()
+        fig.savefig(path, dpi=120)
+
+
+def _base_alpha(rows):
+    return min(r.value["alpha1"] for r in rows)
+
+
+remark1 = Check("remark1", parameters=P, checks=[_remark1_check], constants=Remark1Table(), paper=PAPER,
+                relevant=("Theta", "D", "alpha1", "alpha2", "nu", "tau", "r1", "r2"),
+                title="Remark 1: the certified region δ of Theorem 1 against the delay τ and the gains α1, α2")
