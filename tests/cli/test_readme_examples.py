@@ -20,7 +20,7 @@ import pytest
 README = Path(__file__).resolve().parents[2] / "README.md"
 #: commands whose run takes more than a few seconds (long simulations, the bare report, estimate (15))
 SLOW = ("lkverify simulate", "lkverify report", "lkverify constants aleksandrov2023",
-        "lkverify constants aleksandrov2017.lemma1 --plot", "lkverify check aleksandrov2026.theorem1 --set",
+        "lkverify constants aleksandrov2017.lemma1 --plot", "lkverify check aleksandrov2026.theorem1",
         "lkverify check aleksandrov2026.remark1", "lkverify constants aleksandrov2026.remark1")
 
 
