@@ -173,6 +173,9 @@ class ConstantsJob:
         ``plot_fn(extra, path, values=...)``; default: the certified envelopes on log axes.
     tuning : ConstantsTuning
         How the job spends its budget.
+    wider : dict, optional
+        Wider ranges searched when ``free`` holds no feasible point (gains far from the
+        paper's need, say, a much larger λ or a much smaller region).
     steps : bool, default False
         The model checks the proof's bound steps first (see ``model``).
 
@@ -212,6 +215,7 @@ class ConstantsJob:
     plot_fn: Callable | None = None
     tuning: ConstantsTuning = ConstantsTuning()
     steps: bool = False
+    wider: Mapping | None = None
 
     def plot(self, extra: dict, path, *, values=None) -> None:
         """Write the job's figure (default: the certified envelopes on log axes)."""
@@ -365,13 +369,29 @@ class ConstantsJob:
         tune = self.tuning
         extra_points: list = []
         found = _Candidate(None, None, False)
+        ranges = self.free
+
+        def widen() -> bool:
+            """Switch to the wider ranges (once): True when there are some and time is left."""
+            nonlocal ranges
+            left = deadline.remaining
+            if not self.wider or ranges is self.wider or (left is not None and left <= tune.retry_seconds):
+                return False
+            ranges = self.wider
+            say(f"{item_name}: nothing certified in the search ranges; searching the wider ranges "
+                + ", ".join(f"{k} ∈ [{lo:g}, {hi:g}]" for k, (lo, hi) in self.wider.items()))
+            return True
+
         for round_ in range(tune.rounds):
             state.enter(f"the search of the free parameters (round {round_ + 1})")
             say(f"{item_name}: searching the free parameters {', '.join(self.free)} (estimated)")
             left = deadline.remaining
             search_deadline = Deadline(max(tune.search_share * left, 1e-3)) if left is not None else None
-            params, est = search_parameters(build, self.free, objective=objective, seed=seed + round_,
+            params, est = search_parameters(build, ranges, objective=objective, seed=seed + round_,
                                             extra_points=extra_points, deadline=search_deadline)
+            if est is None and widen():
+                params, est = search_parameters(build, ranges, objective=objective, seed=seed + round_,
+                                                extra_points=extra_points, deadline=search_deadline)
             if est is None:
                 return _Candidate(None, found.certificate, False)
             params = {k: sympy.Rational(v).limit_denominator(tune.parameter_denominator) for k, v in params.items()}
@@ -384,6 +404,9 @@ class ConstantsJob:
                 continue
             found = self._certify(item_name, model, params, est, round_, deadline=deadline, state=state, say=say,
                                   extra_points=extra_points, previous=found.certificate)
+            certified = found.certificate is not None and found.certificate.status is Status.CERTIFIED
+            if not certified and widen():
+                continue
             left = deadline.remaining
             if not found.infeasible or (left is not None and left <= tune.retry_seconds):
                 break

@@ -65,6 +65,8 @@ C0_REL_GAP = 1e-3
 ESTIMATE_GRID = 41
 #: the parameter search: differential evolution's generations and population factor, and its face grid
 SEARCH_MAXITER, SEARCH_POPSIZE, SEARCH_GRID = 250, 20, 31
+#: points sampled uniformly before the parameter search, to seed its population with feasible ones
+PRESAMPLE = 1000
 #: the objective's value at parameters for which the estimator finds no admissible constants
 INFEASIBLE_SCORE = 1e6
 
@@ -727,15 +729,39 @@ def search_parameters(build: Callable[[Mapping], DecayModel], bounds_: Mapping[s
     names = list(bounds_)
     est = _FastEstimator(build, names, grid)
     est.extra = list(extra_points)
+    # a range of positive values spanning a decade or more is searched in log10: a small feasible
+    # region (δ ≲ 0.01 of a range up to 0.45) is otherwise missed by every member of the population,
+    # and a population that sees only infeasible points has converged at once
+    logs = [bool(bounds_[n][0] > 0 and bounds_[n][1] >= 10 * bounds_[n][0]) for n in names]
 
-    def f(x):
-        r = est(list(x))
+    def point(z):
+        return [10.0 ** zi if lg else zi for zi, lg in zip(z, logs)]
+
+    def f(z):
+        r = est(point(z))
         return INFEASIBLE_SCORE if r is None else objective(r)
 
     def expired(xk, convergence=None) -> bool:  # returning True stops differential_evolution cleanly
         return deadline is not None and deadline.expired
 
-    res = differential_evolution(f, [bounds_[n] for n in names], seed=seed, maxiter=maxiter, popsize=popsize,
+    ranges = [tuple(np.log10(bounds_[n])) if lg else bounds_[n] for n, lg in zip(names, logs)]
+    # a population that sees only infeasible points converges at once: seed it with feasible points
+    # found by uniform sampling of the (log) box, as many as half the population, if there are any
+    lo, hi = (np.array([r[k] for r in ranges], dtype=float) for k in (0, 1))
+    rng = np.random.default_rng(seed)
+    npop = popsize * len(names)
+    feasible = []
+    for _ in range(PRESAMPLE):
+        if len(feasible) >= npop // 2 or (deadline is not None and deadline.expired):
+            break
+        z = lo + rng.random(len(names)) * (hi - lo)
+        if est(point(z)) is not None:
+            feasible.append(z)
+    init = "latinhypercube"
+    if feasible:
+        init = np.vstack([np.array(feasible), lo + rng.random((npop - len(feasible), len(names))) * (hi - lo)])
+    res = differential_evolution(f, ranges, seed=seed, maxiter=maxiter, popsize=popsize, init=init,
                                  tol=1e-12, polish=False, callback=expired)
-    params = dict(zip(names, res.x))
-    return params, est(list(res.x))
+    x = point(res.x)
+    params = dict(zip(names, x))
+    return params, est(x)

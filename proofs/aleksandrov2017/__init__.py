@@ -32,6 +32,7 @@ from .theorem1_bound import theorem1_bound
 from .example import HISTORY, example, remark2_energy
 from .lemma1 import EPSILONS, Lemma1Constants, lemma1, lemma1_delta, lemma1_F
 from .conditions_h import ConditionsOnH, corollary1, decide_h_conditions
+from .remark2 import remark2
 
 __all__ = [
     "PAPER",
@@ -45,4 +46,6 @@ __all__ = [
     "EPSILONS", "Lemma1Constants", "lemma1", "lemma1_F", "lemma1_delta",
     # conditions (5), (10), (11) on h; Corollary 1
     "ConditionsOnH", "corollary1", "decide_h_conditions",
+    # Remark 2
+    "remark2",
 ]

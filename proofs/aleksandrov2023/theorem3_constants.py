@@ -22,11 +22,14 @@ from .equations import system
 from .section6 import FIG7_HISTORY, PRINTED_15
 from .theorem3_chain import DECAY, MEASURES, REGION, RHO_CAP
 
-__all__ = ["THEOREM3_CONSTANTS", "FREE", "theorem3_model"]
+__all__ = ["THEOREM3_CONSTANTS", "FREE", "WIDER", "theorem3_model"]
 
 #: the search ranges of the proof's free parameters (the region stays inside the cap of the templates)
 FREE = {"lam": (5.0, 40.0), "alpha": (0.001, 0.9), "beta": (0.001, 0.99), "delta_e": (0.005, 0.45),
         "delta_w": (0.005, 1.0)}
+#: searched when FREE holds no feasible point: Fig. 5 (F = 0.2I) needs λ ≈ 370, Fig. 3 a region δ_e < 0.005
+WIDER = {"lam": (1.0, 1000.0), "alpha": (0.001, 0.9), "beta": (0.001, 0.99), "delta_e": (0.0001, 0.45),
+         "delta_w": (0.0001, 1.0)}
 
 
 def theorem3_model(v, c, *, budget=None, progress=None):
@@ -179,6 +182,7 @@ THEOREM3_CONSTANTS = ConstantsJob(
     model=theorem3_model,
     steps=True,
     free=FREE,
+    wider=WIDER,
     objective={"paper": _objective_paper, "region": _objective_region},
     paper=PRINTED_15,
     applies=_applies,

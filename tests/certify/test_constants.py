@@ -132,3 +132,20 @@ def test_constants_outside_the_hypotheses_is_bad_input(capsys, sets, needle):
     assert main(["constants", "aleksandrov2023.theorem3", *sets]) == 2
     err = capsys.readouterr().err
     assert needle in err and len(err.strip().splitlines()) == 1
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("gains", [
+    {"F": "diag(0.7,0.7,0.7)", "a": "2", "b": "-2", "tau": "0.9", "mu": "2"},     # Fig. 3
+    {"F": "diag(0.2,0.2,0.2)", "a": "0.6", "b": "-0.6", "tau": "0.9", "mu": "2"},  # Fig. 5: needs λ ≈ 370
+], ids=["fig3", "fig5"])
+def test_theorem3_constants_at_the_fig3_and_fig5_gains(gains):
+    from lkverify.catalogue.loader import find_items
+
+    (item,) = find_items("aleksandrov2023.theorem3")
+    P = item.parameters
+    values = P.resolve(gains, use_defaults=True)
+    report, extra = item.constants.run(item.qualified_name, values, {}, budget=300)
+    by = {r.name: r for r in report.results}
+    assert by["delta_tilde"].status.value == "certified" and by["delta_tilde"].value["value"] > 0
+    assert by["c_tilde"].status.value == "certified"

@@ -78,3 +78,21 @@ def test_goal_messages_speak_the_library_language():
     with pytest.raises(InputError) as info:
         job.run("x", {}, {}, goal="fastest")
     assert "--" not in str(info.value) and "paper" in str(info.value)
+
+
+def test_search_finds_a_feasible_set_that_is_a_small_part_of_a_wide_range():
+    """Feasible only for a < 0.01 of a ∈ [1e-4, 10]: searched in log10 and seeded with feasible samples."""
+    import sympy
+
+    from lkverify.certify.decay import DecayModel, search_parameters
+
+    w, e = sympy.symbols("w e", nonnegative=True)
+    Q, half = w**2 + e**2, sympy.Rational(1, 2)
+
+    def build(p):
+        return DecayModel("narrow", (w, e), {w: half, e: half}, Q, Q, (p["a"] - sympy.Rational(1, 100)) * (w**3 + e**3),
+                          sympy.Rational(3, 2), (w, e), {}, {"d1": e, "d2": w})
+
+    params, est = search_parameters(build, {"a": (1e-4, 10.0)}, objective=lambda est: -est["c_tilde"],
+                                    maxiter=20, popsize=5, grid=9)
+    assert est is not None and params["a"] < 0.01

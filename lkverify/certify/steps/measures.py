@@ -272,7 +272,8 @@ class Region:
                 hm = sympy.sympify(measure.window).xreplace(sub)
                 if sympy.simplify(hm - h).is_positive:
                     continue  # a longer window than the sup's: no bound
-                return hm ** (1 / measure.power) * b if measure.kind == "window_norm" else hm * b ** measure.power
+                power = sympy.sympify(measure.power).xreplace(sub)
+                return hm ** (1 / power) * b if measure.kind == "window_norm" else hm * b ** power
         return None
 
     def box(self, measures: Sequence[Measure], substitution: Mapping | None = None) -> dict:
