@@ -33,6 +33,7 @@ from .example import HISTORY, example, remark2_energy
 from .lemma1 import EPSILONS, Lemma1Constants, lemma1, lemma1_delta, lemma1_F
 from .conditions_h import ConditionsOnH, corollary1, decide_h_conditions
 from .remark2 import remark2
+from .theorem2 import system4, theorem2
 
 __all__ = [
     "PAPER",
@@ -48,4 +49,6 @@ __all__ = [
     "ConditionsOnH", "corollary1", "decide_h_conditions",
     # Remark 2
     "remark2",
+    # Theorem 2 (nonlinear damping)
+    "system4", "theorem2",
 ]

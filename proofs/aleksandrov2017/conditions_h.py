@@ -448,15 +448,16 @@ class ConditionsOnH:
     ('failed', True)
     """
 
-    def __init__(self, name: str, h, nu, *, reference: str = ""):
+    def __init__(self, name: str, h, nu, *, mu=None, reference: str = ""):
         self.name = name
         self.h = h
         self.nu = nu
+        self.mu = mu  # Theorem 2: (15) with the order μ of the damping, instead of (10)
         self.reference = reference
 
     def symbols(self) -> set:
-        """The parameters the conditions are stated in (h and ν)."""
-        return {self.h, self.nu}
+        """The parameters the conditions are stated in (h and ν, and μ for (15))."""
+        return {self.h, self.nu} | ({self.mu} if self.mu is not None and not sympy.sympify(self.mu).is_number else set())
 
     def _value_of(self, substitution, key):
         for k, v in substitution.items():
@@ -472,13 +473,17 @@ class ConditionsOnH:
             return Result("hypothesis", self.name, Status.UNDECIDED, None,
                           "h or ν has no value: pass --set h=… and --set nu=…")
         h_expr = lam(t) if isinstance(lam, sympy.Lambda) else sympy.sympify(lam)
+        mu_value = None if self.mu is None else self.mu if sympy.sympify(self.mu).is_number \
+            else self._value_of(substitution, self.mu)
+        if self.mu is not None and mu_value is None:
+            return Result("hypothesis", self.name, Status.UNDECIDED, None, "μ has no value: pass --set mu=…")
         seconds = 10.0 if budget is None else max(float(budget), 0.5)
-        parts = decide_h_conditions(h_expr, nu=nu_value, budget=seconds / 2)
+        parts = decide_h_conditions(h_expr, nu=nu_value, mu=mu_value, budget=seconds / 2)
         summary = parts[-1]
-        detail = (f"for h = {h_expr}, ν = {nu_value}: "
+        detail = (f"for h = {h_expr}, ν = {nu_value}" + (f", μ = {mu_value}" if mu_value is not None else "") + ": "
                   + "; ".join(f"{p.name}: {p.status.value} ({p.detail})" for p in parts[:-1]))
         if summary.status is Status.FAILED:
-            which = decide_h_conditions(h_expr, nu=None, budget=seconds / 2)[-1]
+            which = decide_h_conditions(h_expr, nu=None, mu=mu_value, budget=seconds / 2)[-1]
             detail += f"; for other ν: {which.detail}"
         value = {"h": str(h_expr), "nu": str(nu_value),
                  "parts": {p.name: {"status": p.status.value, "value": _plain(p.value)} for p in parts[:-1]}}
