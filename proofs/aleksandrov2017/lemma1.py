@@ -96,7 +96,9 @@ def _lemma1_check(v, *, budget=60.0):
         if not (0 < eps < 1):
             raise InputError(f"eps: Lemma 1 needs 0 < ε < 1, got eps={eps}; e.g. --set eps=0.9")
         chk, delta, est = lemma1_delta(eps, budget_seconds=budget / len(eps_values))
-        others = [2 * _lemma1_sigma_estimate(float(eps), r1_=R[:, 0], r2_=R[:, 1]) for R in _ROTATED_PAIRS]
+        # the invariance under rotating the pair, illustrated on a coarser grid (61 × 122 axes: 4× faster, the
+        # same estimate to about 1e-7 here)
+        others = [2 * _lemma1_sigma_estimate(float(eps), r1_=R[:, 0], r2_=R[:, 1], n=61) for R in _ROTATED_PAIRS]
         status = Status.CERTIFIED if chk.status is Status.CERTIFIED else chk.status
         out.append(Result("region", f"delta(eps={eps})", status,
                           {"certified": float(delta), "estimate_largest": est, "eps": float(eps),

@@ -361,3 +361,10 @@ def test_nothing_user_supplied_is_executed(capsys, tmp_path, no_computing):
                        f"h=__import__('os').system('touch {marker}')")
     assert code == 2 and not marker.exists()
     one_line(err)
+
+
+@pytest.mark.parametrize("jobs", ["0", "-2"])
+def test_report_jobs_must_be_positive(capsys, jobs):
+    code = main(["report", "--jobs", jobs, "--quiet"])
+    err = capsys.readouterr().err
+    assert code == 2 and "--jobs" in err and len(err.strip().splitlines()) == 1 and "Traceback" not in err

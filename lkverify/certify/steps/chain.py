@@ -660,14 +660,10 @@ def collect_monomials(expr, symbols) -> dict:
     >>> sorted(collect_monomials(3 * x**2 + a * x**2 - y * x + 2, {x, y}).items(), key=str)
     [(1, 2), (x**2, a + 3), (x*y, -1)]
     """
+    from .rewrites import _split
+
     out: dict = {}
-    for term in sympy.Add.make_args(sympy.expand(expr)):
-        c, m = sympy.S.One, sympy.S.One
-        for f in sympy.Mul.make_args(term):
-            if f.free_symbols & symbols:
-                m *= f
-            else:
-                c *= f
+    for c, m in _split(expr, set(symbols)):
         m = sympy.powsimp(m, force=True)
         out[m] = out.get(m, sympy.S.Zero) + c
     return {m: c for m, c in out.items() if c != 0}
