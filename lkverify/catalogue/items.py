@@ -431,17 +431,45 @@ def _check_claim(claim, P, given, sub_given, deadline):
     """
     from ..declare.parameters import ParameterKind
 
+    if given:  # an identity for every value of the parameters holds for the given ones (proved once per process)
+        left = _left(deadline)
+        general = _cached_check(claim, {}, lambda: claim.check({}, values={}, budget=None if left is None else left / 2))
+        if general.status is Status.EXACT:
+            shown = ", ".join(f"{k} = {v}" for k, v in given.items())
+            return dataclasses.replace(general, detail=f"proved for every value of the parameters, hence for {shown}: "
+                                                       f"{general.detail}")
     functions = [k for k in given if P[k].kind in (ParameterKind.COEFFICIENT, ParameterKind.KERNEL)]
     if not functions:
-        return claim.check(sub_given, values=given, budget=_left(deadline))
+        return _cached_check(claim, given, lambda: claim.check(sub_given, values=given, budget=_left(deadline)))
     rest = {k: v for k, v in given.items() if k not in functions}
     left = _left(deadline)
-    general = claim.check(P.substitution(rest), values=rest, budget=None if left is None else left / 2)
+    general = _cached_check(claim, rest, lambda: claim.check(P.substitution(rest), values=rest,
+                                                             budget=None if left is None else left / 2))
     if general.status is Status.EXACT:
         shown = ", ".join(f"{k} = {given[k]}" for k in functions)
         return dataclasses.replace(general, detail=f"proved for every {', '.join(functions)}, hence for {shown}: "
                                                    f"{general.detail}")
     return claim.check(sub_given, values=given, budget=_left(deadline))
+
+
+_CLAIM_CACHE: dict = {}  # (claim, the values it was checked at) → a decided result: one proof per process
+
+
+def _cached_check(claim, values: Mapping, check):
+    """``check()`` once per claim and values in this process; only decided results (exact, failed) are kept.
+
+    A claim's check is deterministic in its values (the identity is proved or refuted exactly),
+    so a theorem run again at the same values — or, for a claim first proved with the user's
+    functions symbolic, at another h or kernel — reuses it.
+    """
+    key = (id(claim), tuple(sorted((k, str(v)) for k, v in values.items())))
+    hit = _CLAIM_CACHE.get(key)
+    if hit is not None and hit[0] is claim:
+        return hit[1]
+    res = check()
+    if res.status in (Status.EXACT, Status.FAILED):
+        _CLAIM_CACHE[key] = (claim, res)
+    return res
 
 
 def _symbols_of(statement) -> set:
