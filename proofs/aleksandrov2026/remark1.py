@@ -156,7 +156,7 @@ class Remark1Table:
         """δ against τ (log–log), one curve per α scaling; open markers where a point is not certified."""
         from matplotlib.figure import Figure
 
-        fig = Figure(figsize=(7.0, 4.6))
+        fig = Figure(figsize=(8.4, 4.6))
         ax = fig.subplots()
         rows = [r for r in extra["results"] if r.value]
         for scale in SCALES:
@@ -178,7 +178,7 @@ class Remark1Table:
         ax.set_title("Remark 1 of paper 000: the region the proof of Theorem 1 certifies\n"
                      "(choices optimised at each point; filled: certified)", fontsize=10)
         ax.grid(alpha=0.3, which="both")
-        ax.legend(fontsize=8, loc="lower left")
+        ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
         fig.tight_layout()
         fig.savefig(path, dpi=120)
 
@@ -189,4 +189,4 @@ def _base_alpha(rows):
 
 remark1 = Check("remark1", parameters=P, checks=[_remark1_check], constants=Remark1Table(), paper=PAPER,
                 relevant=("Theta", "D", "alpha1", "alpha2", "nu", "tau", "r1", "r2"),
-                title="Remark 1: the certified region δ of Theorem 1 against the delay τ and the gains α1, α2")
+                title="Remark 1: the region δ the proof of Theorem 1 allows, against τ and α1, α2 (certified: the constants job)")

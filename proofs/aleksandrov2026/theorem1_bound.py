@@ -31,7 +31,9 @@ from .equations import (PAPER, P, D, D_inv, L, Theta, W, alpha1, alpha2, f, gamm
                         system, tau)
 from .functional9 import functional, int_fL
 
-__all__ = ["structured_Vdot", "derivation", "printed_bound", "theorem1_bound"]
+__all__ = ["structured_Vdot", "derivation", "printed_bound", "theorem1_bound",
+           # the norm trees and constants the proof's chain (theorem1_chain) reuses
+           "L_norm_tree", "M_norm_tree", "Theta_w_tree", "dinv", "eig_of", "f_of", "memory_pointwise"]
 
 M = restoring_torque_rate(omega, (s1, s2), (r1, r2), (alpha1, alpha2))  # α1(ω×s1)×r1 + α2(ω×s2)×r2 = −L̇
 
@@ -62,7 +64,7 @@ w, e1, e2, d1, d2, l, k1, k2, i1, i2 = (m.symbol for m in MEASURES)
 c5, c6, c7, c8, c9, c10p, Dinv_norm, Th_norm = sympy.symbols("c5 c6 c7 c8 c9 c10p Dinv_norm Theta_norm", positive=True)
 
 
-def _eig(name, which, inverse=False):
+def eig_of(name, which, inverse=False):
     def value(v):
         ev = sympy.Matrix(v[name]).eigenvals(multiple=True)
         x = min(ev) if which == "min" else max(ev)
@@ -71,49 +73,49 @@ def _eig(name, which, inverse=False):
 
 
 def _c5(v):
-    return _eig("D", "min", True)(v) * _eig("Theta", "max")(v) * (v["alpha1"] + v["alpha2"])
+    return eig_of("D", "min", True)(v) * eig_of("Theta", "max")(v) * (v["alpha1"] + v["alpha2"])
 
 
 def _c9(v):
-    return _eig("D", "min", True)(v) * _eig("Theta", "max")(v) * sympy.Max(v["alpha1"], v["alpha2"])
+    return eig_of("D", "min", True)(v) * eig_of("Theta", "max")(v) * sympy.Max(v["alpha1"], v["alpha2"])
 
 
-DEFINITIONS = {c6: _eig("D", "min"), c7: _eig("D", "max", True), Dinv_norm: _eig("D", "min", True),
-               Th_norm: _eig("Theta", "max"), c5: _c5, c9: _c9}
+DEFINITIONS = {c6: eig_of("D", "min"), c7: eig_of("D", "max", True), Dinv_norm: eig_of("D", "min", True),
+               Th_norm: eig_of("Theta", "max"), c5: _c5, c9: _c9}
 
 
-def _f(x1, x2):
+def f_of(x1, x2):
     return ((alpha1 * x1**2 + alpha2 * x2**2) / 2) ** nu
 
 
-def _L_norm(m1, m2):
+def L_norm_tree(m1, m2):
     return summed(scaled(alpha1, crossed(measured(m1), unit(r1))), scaled(alpha2, crossed(measured(m2), unit(r2))))
 
 
-_M_norm = summed(scaled(alpha1, crossed(crossed(measured(w_), unit(s1(t))), unit(r1))),
+M_norm_tree = summed(scaled(alpha1, crossed(crossed(measured(w_), unit(s1(t))), unit(r1))),
                  scaled(alpha2, crossed(crossed(measured(w_), unit(s2(t))), unit(r2))))
-_Theta_w = mapped(Theta, measured(w_), lambda ctx: max(sympy.Matrix(ctx.at(Theta)).eigenvals(multiple=True)))
+Theta_w_tree = mapped(Theta, measured(w_), lambda ctx: max(sympy.Matrix(ctx.at(Theta)).eigenvals(multiple=True)))
 _P1, _P2 = K1.pointwise_symbol, K2.pointwise_symbol  # ‖s_i(ξ) − r_i‖ inside the integral
-_pointwise = scaled(_f(_P1, _P2), summed(scaled(alpha1, crossed(measured(K1, at=xi), unit(r1))),
+memory_pointwise = scaled(f_of(_P1, _P2), summed(scaled(alpha1, crossed(measured(K1, at=xi), unit(r1))),
                                          scaled(alpha2, crossed(measured(K2, at=xi), unit(r2)))))
-_dinv = lambda ctx: 1 / min(sympy.Matrix(ctx.at(D)).eigenvals(multiple=True))  # noqa: E731  ‖D⁻¹‖
+dinv = lambda ctx: 1 / min(sympy.Matrix(ctx.at(D)).eigenvals(multiple=True))  # noqa: E731  ‖D⁻¹‖
 
 BOUNDS = [
-    TermBound("−γωᵀDω", -gamma * c6 * w**2, Rayleigh(omega(t), D, factor=-gamma, eigenvalue=_eig("D", "min"),
+    TermBound("−γωᵀDω", -gamma * c6 * w**2, Rayleigh(omega(t), D, factor=-gamma, eigenvalue=eig_of("D", "min"),
                                                     norm_squared=w**2)),
-    TermBound("−f^ν LᵀD⁻¹L", -c7 * _f(e1, e2) * l**2,
-              Rayleigh(L(t), D_inv, factor=-_f(e1, e2), eigenvalue=_eig("D", "max", True), norm_squared=l**2)),
+    TermBound("−f^ν LᵀD⁻¹L", -c7 * f_of(e1, e2) * l**2,
+              Rayleigh(L(t), D_inv, factor=-f_of(e1, e2), eigenvalue=eig_of("D", "max", True), norm_squared=l**2)),
     TermBound("−LᵀD⁻¹(ω×(Θω))", c9 * w**2 * (e1 + e2),
-              CauchySchwarz(L(t), cross(omega(t), Theta * omega(t)), (_L_norm(e1_, e2_), crossed(measured(w_), _Theta_w)),
-                            matrix=D_inv, factor=-1, operator_norm=_dinv)),
+              CauchySchwarz(L(t), cross(omega(t), Theta * omega(t)), (L_norm_tree(e1_, e2_), crossed(measured(w_), Theta_w_tree)),
+                            matrix=D_inv, factor=-1, operator_norm=dinv)),
     TermBound("−γf^ν(t−τ)ωᵀL(t−τ)", gamma * c8 * w * (d1**K + d2**K),
-              CauchySchwarz(omega(t), L(t - tau), (measured(w_), _L_norm(d1_, d2_)), factor=-gamma * _f(d1, d2)),
+              CauchySchwarz(omega(t), L(t - tau), (measured(w_), L_norm_tree(d1_, d2_)), factor=-gamma * f_of(d1, d2)),
               then=(Homogeneous(("d1", "d2"), d1**K + d2**K, "c8", factor=gamma * w),)),
     TermBound("MᵀD⁻¹∫f^νL dξ", Dinv_norm * (alpha1 + alpha2) * c10p * w * (k1 + k2),
-              CauchySchwarz(M, int_fL, (_M_norm, integral_of(_pointwise, measures=(K1, K2), power=K, constant="c10p")),
-                            matrix=D_inv, operator_norm=_dinv)),
+              CauchySchwarz(M, int_fL, (M_norm_tree, integral_of(memory_pointwise, measures=(K1, K2), power=K, constant="c10p")),
+                            matrix=D_inv, operator_norm=dinv)),
     TermBound("−MᵀD⁻¹Θω", c5 * w**2,
-              CauchySchwarz(M, Theta * omega(t), (_M_norm, _Theta_w), matrix=D_inv, factor=-1, operator_norm=_dinv)),
+              CauchySchwarz(M, Theta * omega(t), (M_norm_tree, Theta_w_tree), matrix=D_inv, factor=-1, operator_norm=dinv)),
     TermBound("−λ∫W dξ", -lam * (i1 + i2), Equal(-lam * (i1 + i2))),
     TermBound("(λτ+μ)W", (lam * tau + mu) * (e1 ** (K + 1) + e2 ** (K + 1)),
               Equal((lam * tau + mu) * (e1 ** (K + 1) + e2 ** (K + 1)))),
@@ -121,7 +123,7 @@ BOUNDS = [
 ]
 
 #: the printed right-hand side, with c10 = ‖D⁻¹‖(α1 + α2)κ
-PRINTED_RHS = ((c5 - gamma * c6) * w**2 - c7 * _f(e1, e2) * l**2 + gamma * c8 * w * (d1**K + d2**K)
+PRINTED_RHS = ((c5 - gamma * c6) * w**2 - c7 * f_of(e1, e2) * l**2 + gamma * c8 * w * (d1**K + d2**K)
                + c9 * w**2 * (e1 + e2) + Dinv_norm * (alpha1 + alpha2) * c10p * w * (k1 + k2) - lam * (i1 + i2)
                + (lam * tau + mu) * (e1 ** (K + 1) + e2 ** (K + 1)) - mu * (d1 ** (K + 1) + d2 ** (K + 1)))
 

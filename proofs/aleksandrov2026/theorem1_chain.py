@@ -41,12 +41,14 @@ from lkverify.certify.steps.chain import Krasovskii, TermBound, TermwiseBound, c
 from lkverify.certify.steps.measures import Region, sup_norm
 from lkverify.certify.steps.rewrites import LowerBound, OnRegion, PowerSplit, WindowHolder, YoungEach
 from lkverify.certify.steps.rules import (CauchySchwarz, Condition, Equal, Homogeneous, Rayleigh, WindowWeight,
-                                          crossed, integral_of, mapped, measured, scaled, summed, unit)
+                                          crossed, integral_of, measured, scaled, summed, unit)
 
 from .equations import (D, D_inv, L, Theta, alpha1, alpha2, delta, epsilon, eta, eta_K, eta_w, gamma, lam, mu, nu,
                         omega, r1, r2, s1, s2, system, tau)
 from .functional9 import functional, int_fL
-from .theorem1_bound import MEASURES, M, derivation, d1, d2, e1, e2, i1, i2, k1, k2, l, w
+from .theorem1_bound import (MEASURES, M, L_norm_tree as _L_norm, M_norm_tree as _M_norm, Theta_w_tree as _Theta_w,
+                             d1, d2, derivation, dinv as _dinv, e1, e2, eig_of as _eig, f_of as _f, i1, i2, k1, k2, l,
+                             memory_pointwise as _pointwise, w)
 
 __all__ = ["CONCLUSION", "REGION", "chain_steps", "find_choices", "lemma10", "steps"]
 
@@ -59,14 +61,6 @@ REGION = Region({SUP1: delta, SUP2: delta})
 
 theta_min, theta_max, c6, c7, Dinv_norm = sympy.symbols("theta_min theta_max c6 c7 Dinv_norm", positive=True)
 c8, c10p = sympy.symbols("c8 c10p", positive=True)
-
-
-def _eig(name, which, inverse=False):
-    def value(v):
-        ev = sympy.Matrix(v[name] if isinstance(v, dict) else v.values[name]).eigenvals(multiple=True)
-        x = min(ev) if which == "min" else max(ev)
-        return 1 / x if inverse else x
-    return value
 
 
 DEFINITIONS = {theta_min: _eig("Theta", "min"), theta_max: _eig("Theta", "max"), c6: _eig("D", "min"),
@@ -96,7 +90,7 @@ def lemma10(ctx) -> Condition:
     b = ctx.at(ctx.region.bound_of(_by["e1"], ctx.sub)) if ctx.region is not None else None
     if b is None:
         return Condition("(10) on the region", Status.UNDECIDED, "the region does not bound ‖s_i − r_i‖")
-    sigma_max = sympy.nsimplify(b) / sympy.sqrt(2)
+    sigma_max = sympy.sympify(b) / sympy.sqrt(2)  # the region's exact bound (a Rational, or a float's binary value)
     sigma_max = sympy.Rational(sympy.ceiling(sympy.N(sigma_max, 30) * 10**12), 10**12)  # an upper rational bound
     chk = _lemma10_certificate(eps, ctx.at(alpha1), ctx.at(alpha2), tuple(ctx.values["r1"]), tuple(ctx.values["r2"]),
                                sigma_max, ctx.seconds_left(20.0))
@@ -106,22 +100,7 @@ def lemma10(ctx) -> Condition:
     return Condition(text, status, f"{chk.boxes} boxes" if status is Status.CERTIFIED else chk.detail)
 
 
-# ---- norm trees (as in theorem1_bound) --------------------------------------------------------
-def _L_norm(m1, m2):
-    return summed(scaled(alpha1, crossed(measured(m1), unit(r1))), scaled(alpha2, crossed(measured(m2), unit(r2))))
-
-
-def _f(x1, x2):
-    return ((alpha1 * x1**2 + alpha2 * x2**2) / 2) ** nu
-
-
-_M_norm = summed(scaled(alpha1, crossed(crossed(measured(_by["w"]), unit(s1(t))), unit(r1))),
-                 scaled(alpha2, crossed(crossed(measured(_by["w"]), unit(s2(t))), unit(r2))))
-_Theta_w = mapped(Theta, measured(_by["w"]), lambda ctx: max(sympy.Matrix(ctx.at(Theta)).eigenvals(multiple=True)))
-_dinv = lambda ctx: 1 / min(sympy.Matrix(ctx.at(D)).eigenvals(multiple=True))  # noqa: E731  ‖D⁻¹‖
-_P1, _P2 = _by["K1"].pointwise_symbol, _by["K2"].pointwise_symbol
-_pointwise = scaled(_f(_P1, _P2), summed(scaled(alpha1, crossed(measured(_by["K1"], at=xi), unit(r1))),
-                                         scaled(alpha2, crossed(measured(_by["K2"], at=xi), unit(r2)))))
+# ---- norm trees: those of theorem1_bound ---------------------------------------------------------
 _memory = integral_of(_pointwise, measures=(_by["K1"], _by["K2"]), power=K, constant="c10p")
 _tau_P = tau ** (1 / Pw)  # Hölder: ∫‖v‖^k ≤ τ^{1−k/P}(∫‖v‖^P)^{k/P}, 1 − k/P = 1/P
 _Ik = [i ** (K / Pw) for i in (i1, i2)]
@@ -388,27 +367,10 @@ def _gp_choices(exprs, *, margin=0.99, delta_max=0.5):
 
 
 def _coefficient_functions(values, eps):
-    """[(sign wanted, f(γ, λ, μ, η_ω, η_K, η, δ))] for every coefficient of L, U, W (floats; estimates of c8, c10′)."""
-    f = lambda x: float(sympy.N(x, 30))  # noqa: E731
-    a1, a2, nu_ = f(values["alpha1"]), f(values["alpha2"]), f(values["nu"])
-    c = 1.01 * _homogeneous_estimate(2 * nu_ + 1, nu_, a1, a2)  # c8 = c10′: the same supremum
-    values = {k: v for k, v in values.items() if k not in (*_CHOICE_NAMES, "delta", "epsilon")}
-    sub = dict(steps[0].system.parameters.substitution(values))
-    sub.update({k: v for k, v in steps[0].named_constants(values).items()})
-    sub.update({c8: c, c10p: c})
-    choice_syms = [sympy.Symbol(n, positive=True) for n in (*_CHOICE_NAMES, "delta")]
-    meas = {m.symbol for m in MEASURES}
-    out = []
-    for step in steps:
-        rhs = sympy.sympify(step.rhs).xreplace(sub)
-        rhs = rhs.xreplace({epsilon: sympy.Rational(eps)})
-        for mono, coeff in collect_monomials(rhs, meas).items():
-            want = _SIGNS[step.role]
-            if step.role == "upper":
-                continue  # U's coefficients are positive for every positive choice
-            g = sympy.lambdify(choice_syms, coeff, "math")
-            out.append((want, g, str(mono)))
-    return out
+    """[(sign wanted, f(γ, λ, μ, η_ω, η_K, η, δ), monomial)] for every coefficient of L and W (floats)."""
+    syms = [sympy.Symbol(n, positive=True) for n in (*_CHOICE_NAMES, "delta")]
+    return [(want, sympy.lambdify(syms, coeff, "math"), mono) for want, coeff, mono in
+            _coefficient_expressions(values, eps)]
 
 
 def _largest_delta_at(fns, x, hi=0.5):
