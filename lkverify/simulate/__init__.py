@@ -8,6 +8,7 @@
 * :mod:`~lkverify.simulate.control` — :class:`StepControl`: tolerances and step limits;
 * :mod:`~lkverify.simulate.runs` — :func:`simulate` and the :class:`Trajectory`;
 * :mod:`~lkverify.simulate.experiments` — runs, plotted series and claims about runs;
+* :mod:`~lkverify.simulate.trend` — algebraic decay claims (E' ≈ −k h E^λ judged in tail windows);
 * :mod:`~lkverify.simulate.envelope` — a predicted envelope against a trajectory;
 * :mod:`~lkverify.simulate.rigidbody` — numeric attitude conventions (rotations, ‖χ‖_τ).
 """
@@ -19,6 +20,7 @@ from .experiments import (BoundedNotAttractive, Converges, DoesNotConverge, Enve
                           RunClaim, RunSummary, Sensitive, Series, SmootherThan, along)
 from .runs import MAX_STEPS, PreparedRun, Trajectory, prepare_run, simulate
 from .solver import DDESolution, DenseHistory, Outcome, solve_dde
+from .trend import DecaysAlgebraically, LimitAboveFloor
 
 __all__ = [
     "FromValues", "along",
@@ -26,4 +28,5 @@ __all__ = [
     "EnvelopeCheck", "EnvelopeSpec", "FasterThan", "MAX_STEPS", "Outcome", "PreparedRun", "QUADRATURE_MAX_STEP",
     "Run", "RunClaim", "RunSummary", "Sensitive", "Series", "SmootherThan", "StepControl", "Trajectory",
     "compile_system", "cross_check", "prepare_run", "simulate", "solve_dde",
+    "DecaysAlgebraically", "LimitAboveFloor",
 ]
