@@ -28,7 +28,7 @@ r1 = (1/√2, 1/√2, 0), r2 = (−1/√2, 1/√2, 0), r3 = (0, 0, 1), α1 = α2
 Modules: :mod:`.equations` (parameters, states, (2), (7), (13)), :mod:`.theorem1`,
 :mod:`.theorem1_bound` (the printed V̇ bound with c5…c10 on the exact V̇, proved),
 :mod:`.functional9`, :mod:`.theorem1_chain` (the proof's chain to the conclusion, its choices),
-:mod:`.remark1` (the certified δ against τ and α),
+:mod:`.remark1` (the certified δ against τ and α), :mod:`.remark3` (β ≤ 0 with G = a g I: the threshold a*),
 :mod:`.theorem2`, :mod:`.theorem2_bound` (the printed γβc7 step, refuted for β < 0, and its
 corrected form), :mod:`.example` (section 5).
 """
@@ -38,6 +38,7 @@ from .equations import (PAPER, D, D_inv, L, P, Theta, W, alpha1, alpha2, beta, f
 from .theorem1 import functional, int_fL, printed_Vdot, theorem1
 from .theorem1_bound import theorem1_bound
 from .remark1 import remark1
+from .remark3 import remark3
 from .theorem2 import Xi, theorem2
 from .theorem2_bound import theorem2_bound
 from .example import HISTORY, example
@@ -48,7 +49,7 @@ __all__ = [
     "P", "Theta", "D", "D_inv", "alpha1", "alpha2", "nu", "tau", "r1", "r2", "r3", "gamma", "lam", "mu", "beta", "g",
     "omega", "s1", "s2", "s3", "L", "f", "W", "system", "system_pid",
     # Theorem 1
-    "functional", "int_fL", "printed_Vdot", "theorem1", "theorem1_bound", "remark1",
+    "functional", "int_fL", "printed_Vdot", "theorem1", "theorem1_bound", "remark1", "remark3",
     # Theorem 2
     "Xi", "theorem2", "theorem2_bound",
     # section 5
