@@ -1,0 +1,125 @@
+"""Theorem 1 of paper 002 (system (3), functional (П.1)): V̇, hypotheses, the chain, Corollary 1.
+
+Each checker is tried where it must fail (a flipped sign or a dropped term in the printed V̇,
+Π + τΠ̃ indefinite, 2σ ≤ μ + 1, p0 below max |φ|, a wrong constant in a bound step) and
+where a true statement written differently must pass.
+"""
+
+import sympy
+import pytest
+
+from lkverify import DerivativeClaim, Status, Term, dot, norm_power, quad, t
+from lkverify.proofs.aleksandrov2023 import theorem1_functional as F
+from lkverify.proofs.aleksandrov2023.system3 import P3, alpha, grad_Pi, lam, mu, q, skew, system3, tau, v
+from lkverify.proofs.aleksandrov2023.theorem1 import HYPOTHESES, theorem1
+
+
+def _values(**over):
+    return P3.substitution(P3.resolve({k: str(x) for k, x in over.items()}, use_defaults=True))
+
+
+def _hyp(name, **over):
+    (h,) = [h for h in HYPOTHESES if h.name == name]
+    return h.evaluate(_values(**over))
+
+
+def _claim(terms, name="mutant"):
+    return DerivativeClaim(name, F.functional, system3, terms).check({}, values={}, budget=60)
+
+
+# ---- V̇ of (П.1) along (3) -----------------------------------------------------------------------
+def test_structured_and_printed_vdot_are_exact_for_every_parameter():
+    for claim in (F.derivation, F.printed):
+        assert claim.check({}, values={}, budget=60).status is Status.EXACT
+
+
+def test_printed_vdot_with_a_flipped_sign_is_refuted_term_by_term():
+    terms = list(F.printed_Vdot)
+    k = next(i for i, tm in enumerate(terms) if tm.text == "−α‖q(t−τ)‖^{μ+1}")
+    terms[k] = Term(alpha * norm_power(q(t - tau), mu + 1), text="+α‖q(t−τ)‖^{μ+1}")
+    res = _claim(terms)
+    assert res.status is Status.FAILED
+    assert res.differences and "q_1(t - tau)" in res.as_text()
+
+
+def test_printed_vdot_with_a_dropped_term_is_refuted():
+    terms = [tm for tm in F.printed_Vdot if tm.text != "q̇ᵀAq̇"]
+    assert _claim(terms).status is Status.FAILED
+
+
+def test_vdot_with_the_skew_term_dropped_is_refuted():
+    """qᵀP(q)q = 0 drops out, but λq̇ᵀP(q)q does not."""
+    terms = [tm for tm in F.structured_Vdot if tm.text != "−λq̇ᵀP(q)q"]
+    assert _claim(terms).status is Status.FAILED
+
+
+def test_a_true_vdot_written_differently_passes():
+    """−λq̇ᵀP(q)q = λqᵀP(q)q̇ (P skew) and −qᵀ∂Π/∂q = −4Π (Euler, μ = 3) written otherwise."""
+    from lkverify.proofs.aleksandrov2023.system3 import Pi, X
+
+    terms = [tm for tm in F.structured_Vdot if tm.text not in ("−λq̇ᵀP(q)q",)]
+    terms.append(Term(lam * quad(q(t), skew(t), v(t)), text="λqᵀP(q)q̇"))
+    assert _claim(terms).status is Status.EXACT
+    euler = [tm for tm in F.structured_Vdot if tm.text != "−qᵀ(∂Π/∂q+τ∂Π̃/∂q)"]
+    from lkverify.proofs.aleksandrov2023.system3 import grad_Pi_t
+    euler += [Term(-4 * Pi.xreplace(dict(zip(X, q(t)))), text="−4Π"),
+              Term(-tau * dot(q(t), grad_Pi_t(t)), text="−τqᵀ∂Π̃/∂q")]
+    assert _claim(euler).status is Status.EXACT
+    assert dot(q(t), grad_Pi(t)) is not None
+
+
+# ---- hypotheses ----------------------------------------------------------------------------------
+def test_hypotheses_hold_at_the_defaults():
+    res = {h.name: h.evaluate(_values()) for h in HYPOTHESES}
+    assert res["mu > 1"].status is Status.EXACT
+    assert res["2*sigma > mu + 1"].status is Status.EXACT
+    assert res["Pi + tau*Pi~ positive definite"].status is Status.CERTIFIED
+    assert res["||P(q)|| <= p0 ||q||^(sigma-1)"].status is Status.CERTIFIED
+    # the certified minimum of Π + τΠ̃ on the circle is below its value 1/8 at (0, 1)
+    assert 0 < res["Pi + tau*Pi~ positive definite"].value <= sympy.Rational(1, 8)
+
+
+def test_indefinite_pi_plus_tau_pi_tilde_fails_with_a_point():
+    r = _hyp("Pi + tau*Pi~ positive definite", pi04="-1/2")
+    assert r.status is Status.FAILED and "(0, 1)" in r.detail
+
+
+def test_a_larger_delay_can_make_pi_plus_tau_pi_tilde_definite():
+    """Remark 1: Π indefinite, stabilised by the distributed delay: pi04 = −1/2 fails at τ = 1, holds at τ = 3."""
+    assert _hyp("Pi + tau*Pi~ positive definite", pi04="-1/2", tau=3).status is Status.CERTIFIED
+    assert _hyp("Pi + tau*Pi~ positive definite", pi04="-1/4", tau=1).status is Status.FAILED
+
+
+def test_condition_6_fails_at_the_boundary_and_below():
+    assert _hyp("2*sigma > mu + 1", sigma=2).status is Status.FAILED  # 2σ = μ + 1
+    assert _hyp("2*sigma > mu + 1", sigma="3/2").status is Status.FAILED
+    # with σ = 2 the instance's P(q) (degree 2) also violates (4), at an exact point
+    r = _hyp("||P(q)|| <= p0 ||q||^(sigma-1)", sigma=2)
+    assert r.status is Status.FAILED and "exact" in r.detail
+
+
+def test_mu_must_exceed_one_and_match_the_forms():
+    assert _hyp("mu > 1", mu=1).status is Status.FAILED
+    assert _hyp("Pi, Pi~ homogeneous of order mu+1", mu=2).status is Status.FAILED
+
+
+def test_skew_bound_4_needs_p0_above_max_phi():
+    """max |φ| on the circle for φ = q1² + ½q1q2 is (1 + √(5/4))/2 ≈ 1.059: p0 = 1 fails, 11/10 holds."""
+    assert _hyp("||P(q)|| <= p0 ||q||^(sigma-1)", p0=1).status is Status.FAILED
+    assert _hyp("||P(q)|| <= p0 ||q||^(sigma-1)", p0="107/100").status is Status.CERTIFIED
+    # equality |φ| = p0‖q‖² (φ = ‖q‖², p0 = 1) holds exactly
+    assert _hyp("||P(q)|| <= p0 ||q||^(sigma-1)", p11=1, p12=0, p22=1, p0=1).status is Status.EXACT
+
+
+# ---- the item ---------------------------------------------------------------------------------
+def test_the_item_reports_hypotheses_and_identities():
+    rep = theorem1.run({}, budget=60)
+    by = {r.name: r for r in rep.results}
+    assert by["Vdot_structured"].status is Status.EXACT
+    assert by["Vdot_printed"].status is Status.EXACT
+    assert all(by[h.name].status.is_proof for h in HYPOTHESES)
+
+
+def test_the_item_fails_on_an_indefinite_potential():
+    rep = theorem1.run({"pi04": "-1/2"}, budget=60)
+    assert rep.exit_code == 1 and rep.verdict.startswith("failed: hypotheses")
