@@ -10,6 +10,9 @@
   a bound on a weight, a template constant over a chart).
 * :mod:`.witnesses` — adversarial witnesses: states with piecewise-constant histories,
   pushed by local optimisation, rechecked in interval arithmetic.
+* :mod:`.memory` — memory integrals ∫_0^t κ(t − ξ)‖v(ξ)‖^p dξ as measures, and their rules
+  (the integral written in its measures, a kernel bound, Hölder on the memory, the region's
+  bound, Krasovskii's conclusion with integrable kernels).
 * :mod:`.chain` — :class:`TermwiseBound`: ``lhs ≤ rhs`` with lhs a sum of labelled terms
   of V or of the exact V̇, each term bounded by a rule, the bounds summed and compared
   with rhs on the region.
@@ -17,6 +20,8 @@
 
 from .chain import ChainResult, Decay, TermBound, TermResult, TermwiseBound
 from .measures import Measure, Region, norm_measure, sup_norm, window_integral_measure, window_norm
+from .memory import (Evaluated, KernelBound, MemoryHolder, MemoryKrasovskii, MemoryMeasure, MemoryWeight,
+                     memory_integral_of, memory_measure)
 from .quadratic import BoundClaim, QuadraticForms, StepResult, quadratic_upper_bound
 from .rules import (CauchySchwarz, Context, Equal, Nonpositive, Printed, Rayleigh, Template, WindowWeight, Young,
                     crossed, integral_of, measured, scaled, unit)
@@ -26,4 +31,6 @@ __all__ = ["BoundClaim", "CauchySchwarz", "ChainResult", "Context", "Decay", "Eq
            "Printed", "QuadraticForms", "Rayleigh", "Region", "StepResult", "Template", "TermBound", "TermResult",
            "TermwiseBound", "UnsupportedClaim", "WindowWeight", "Witness", "Young", "crossed", "integral_of",
            "measured", "norm_measure", "quadratic_upper_bound", "scaled", "search_witness", "sup_norm", "unit",
-           "window_integral_measure", "window_norm"]
+           "window_integral_measure", "window_norm",
+           "Evaluated", "KernelBound", "MemoryHolder", "MemoryKrasovskii", "MemoryMeasure", "MemoryWeight",
+           "memory_integral_of", "memory_measure"]

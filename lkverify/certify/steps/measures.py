@@ -265,7 +265,7 @@ class Region:
             if measure.kind == "norm":
                 lag = sympy.simplify(sympy.sympify(t - measure.time).xreplace(sub))
                 if measure.vector == m.vector.subs(xi, measure.time) and lag.is_nonnegative \
-                        and sympy.simplify(h - lag).is_nonnegative:
+                        and sympy.simplify(h - lag).is_extended_nonnegative:  # h = ∞: the whole history
                     return b
                 continue
             if measure.kind in ("window_norm", "window_integral") and measure.vector == m.vector:
@@ -274,7 +274,8 @@ class Region:
                     continue  # a longer window than the sup's: no bound
                 power = sympy.sympify(measure.power).xreplace(sub)
                 return hm ** (1 / power) * b if measure.kind == "window_norm" else hm * b ** power
-        return None
+        own = getattr(measure, "bound_from", None)  # a kind defined elsewhere bounds itself (steps.memory)
+        return own(self, sub) if own is not None else None
 
     def box(self, measures: Sequence[Measure], substitution: Mapping | None = None) -> dict:
         """``{symbol: upper bound}`` for each measure (raises InputError if one is unbounded)."""

@@ -534,6 +534,8 @@ def _resolve_norm(nb: Norm, vector, ctx: Context) -> tuple:
     """(bound, conditions) proving ‖vector‖ ≤ bound by the tree ``nb`` (vector matched exactly)."""
     conds = []
     vec = sympy.Matrix(ctx.at(sympy.Matrix(vector)))
+    if callable(getattr(nb, "resolve", None)):  # a norm bound that resolves itself (steps.memory)
+        return nb.resolve(vec, ctx, vector)
     if isinstance(nb.vector, tuple) and nb.vector[0] == "integrals":
         _, pointwise, measures, k, weight, constant = nb.vector
         return _resolve_integrals(vec, pointwise, measures, ctx.at(k), weight, constant, ctx, vector)
