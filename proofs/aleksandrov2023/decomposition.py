@@ -58,7 +58,8 @@ from lkverify.status import Status
 
 from .equations import PAPER
 
-__all__ = ["PAPER", "P2", "A", "B", "Q", "D", "MU", "NU1", "NU2", "tau", "q", "p", "system1", "X", "Y",
+__all__ = ["PAPER", "P2", "A", "B", "Q", "D", "MU", "NU1", "NU2", "tau", "q", "p", "system1", "X", "Y", "x", "y",
+           "q_of_xy", "system_P4",
            "printed_P4", "decide_7", "decide_8", "decide_order", "escaping_ray", "Decided", "instance_matrices",
            "COEFFICIENTS"]
 
@@ -117,6 +118,26 @@ def X(time) -> sympy.Matrix:
 def Y(time) -> sympy.Matrix:
     """y = q + B⁻¹A q̇ (the second new variable of (П.4)) at ``time``."""
     return sympy.Matrix(q(time)) + _Binv * A * sympy.Matrix(p(time))
+
+
+# (П.4) as printed, a system in the new variables x = q̇, y = q + B⁻¹Aq̇ (the proof's V̇ is taken along it)
+x = Vector("x", 2)
+y = Vector("y", 2)
+
+
+def q_of_xy(time) -> sympy.Matrix:
+    """q = y − B⁻¹Ax at ``time``, the argument of Q and D in (П.4)."""
+    return sympy.Matrix(y(time)) - _Binv * A * sympy.Matrix(x(time))
+
+
+_Q_P4 = Term(-Q(q_of_xy(t)), text="−Q(y − B⁻¹Ax)", latex=r"-Q(y-B^{-1}Ax)")
+_D_P4 = Term(-window_integral(D(q_of_xy(xi)), tau), text="−∫D(y(ξ) − B⁻¹Ax(ξ))dξ",
+             latex=r"-\int_{t-\tau}^t D(y(\xi)-B^{-1}Ax(\xi))\,d\xi")
+system_P4 = System([
+    Equation(x, [Term(-B * sympy.Matrix(x(t)), text="−Bx", latex="-Bx"), _Q_P4, _D_P4],
+             mass=A, mass_text="A", mass_latex="A"),
+    Equation(y, [_Q_P4, _D_P4], mass=B, mass_text="B", mass_latex="B"),
+], parameters=P2, name="(П.4)")
 
 
 def printed_P4(*, sign_Q=-1, shift=None, name_suffix="") -> list[DerivativeClaim]:

@@ -35,14 +35,16 @@ c1 … c10, m_kj, ε1, ε2, h1, h2 — are not encoded: the verdict names the fi
 
 import sympy
 
-from lkverify import Hypothesis, Theorem
-
-from .decomposition import (MU, NU1, NU2, PAPER, A, B, D, Decided, P2, Q, decide_7, decide_8, decide_order,
-                            printed_P4, system1)
+from lkverify import DerivativeClaim, Functional, Hypothesis, Term, Theorem, norm_squared, quad, t, window_integral, xi
 from lkverify.certify.conditions import ConditionResult, Margin
+from lkverify.report.results import Result
 from lkverify.status import Status
 
-__all__ = ["theorem2", "homogeneous_of_order", "printed"]
+from .decomposition import (MU, NU1, NU2, PAPER, A, B, D, Decided, P2, Q, decide_7, decide_8, decide_order,
+                            printed_P4, q_of_xy, system_P4, tau, x, y)
+
+__all__ = ["theorem2", "homogeneous_of_order", "printed", "functional", "structured_Vdot", "derivation",
+           "P4_along_1", "S1", "S2"]
 
 
 def homogeneous_of_order(substitution=None) -> ConditionResult:
@@ -57,18 +59,93 @@ def homogeneous_of_order(substitution=None) -> ConditionResult:
                            detail=f"not homogeneous of order μ = {MU}: residues {residue}")
 
 
-_A_B = tuple(A.free_symbols | B.free_symbols)
-_G = tuple(B.free_symbols | Q(sympy.symbols("u1 u2")).free_symbols | D(sympy.symbols("u1 u2")).free_symbols
-           | {P2["tau"].obj}) 
-
-#: the printed (П.4), row by row (findings about the paper)
+#: the printed (П.4), row by row, derived along (1)
 printed = printed_P4()
+
+
+class P4Along1:
+    """The link "(П.4) is (1) in x = q̇, y = q + B⁻¹Aq̇": the printed rows derived along (1) at the run's values.
+
+    The chain's V̇ is taken along (П.4) as printed; this link is what makes it V̇ along (1).  A
+    mutated print fails it with the term-by-term difference.
+    """
+
+    def __init__(self, claims, name="(П.4) is (1) in x = q̇, y = q + B⁻¹Aq̇"):
+        self.claims, self.name = tuple(claims), name
+
+    def symbols(self) -> set:
+        return set().union(*(c.functional.expr.free_symbols | {s for term in c.terms for s in term.expr.free_symbols}
+                             for c in self.claims)) & set(P2.substitution(P2.resolve({})).keys())
+
+    def evaluate(self, substitution, *, budget=None) -> Result:
+        values = {spec.name: substitution[spec.obj] for spec in P2 if spec.obj in substitution}
+        results = [c.check(substitution, values=values, budget=budget or 60.0) for c in self.claims]
+        bad = [(c, r) for c, r in zip(self.claims, results) if r.status is not Status.EXACT]
+        if not bad:
+            return Result("identity", self.name, Status.EXACT, None,
+                          f"each row of (П.4) as printed equals d/dt (Ax)_i, d/dt (By)_i along (1) at the run's "
+                          f"values (exact): {', '.join(c.name for c in self.claims)}")
+        status = Status.FAILED if any(r.status is Status.FAILED for _, r in bad) else Status.UNDECIDED
+        return Result("identity", self.name, status, None,
+                      "; ".join(f"{c.name}: {r.status}: {r.detail}" for c, r in bad))
+
+
+P4_along_1 = P4Along1(printed)
+
+# The functional of the proof for V1 = xᵀS1x, V2 = yᵀS2y (ν1 = ν2 = 2), μ = 3, with S1, S2 any symmetric
+# matrices (the run's P1, P2 are such matrices) and α1, β1, α2, β2 > 0 free:
+#   V = V1(x) + V2(y) − (∂V2/∂y)ᵀB⁻¹∫(ξ+τ−t)D(y(ξ))dξ + ∫(α1 + β1(ξ+τ−t))‖x‖^{ν1} + ∫(α2 + β2(ξ+τ−t))‖y‖^{ν2+μ−1}
+S1 = P2.spd_matrix("S1", 2, default="diag(1,1)", latex="P_1", description="V1 = xᵀS1x (the functional's)")
+S2 = P2.spd_matrix("S2", 2, default="diag(1,1)", latex="P_2", description="V2 = yᵀS2y (the functional's)")
+alpha1, beta1, alpha2, beta2 = (P2.scalar(n, positive=True, default=1, latex=rf"\{n[:-1]}_{n[-1]}")
+                                for n in ("alpha1", "beta1", "alpha2", "beta2"))
+_Binv, _Ainv = B.inv(), A.inv()
+_x, _y, _q = sympy.Matrix(x(t)), sympy.Matrix(y(t)), q_of_xy(t)
+_K = window_integral(D(sympy.Matrix(y(xi))), tau, weight=xi + tau - t)   # ∫(ξ+τ−t)D(y(ξ))dξ
+_J = window_integral(D(q_of_xy(xi)), tau)                                # ∫D(y(ξ) − B⁻¹Ax(ξ))dξ
+_Jy = window_integral(D(sympy.Matrix(y(xi))), tau)                       # ∫D(y(ξ))dξ
+_w = xi + tau - t
+
+functional = Functional([
+    Term(quad(_x, S1), text="V1 = xᵀS1x", latex=r"x^\top S_1 x"),
+    Term(quad(_y, S2), text="V2 = yᵀS2y", latex=r"y^\top S_2 y"),
+    Term(-2 * quad(S2 * _y, _Binv, _K), text="−(∂V2/∂y)ᵀB⁻¹∫(ξ+τ−t)D(y(ξ))dξ",
+         latex=r"-\left(\frac{\partial V_2}{\partial y}\right)^\top B^{-1}\int(\xi+\tau-t)D(y(\xi))d\xi"),
+    Term(window_integral(norm_squared(x(xi)), tau, weight=alpha1 + beta1 * _w), text="∫(α1+β1(ξ+τ−t))‖x(ξ)‖²dξ"),
+    Term(window_integral(norm_squared(y(xi)) ** 2, tau, weight=alpha2 + beta2 * _w), text="∫(α2+β2(ξ+τ−t))‖y(ξ)‖⁴dξ"),
+], name="V of the proof of Theorem 2 (ν1 = ν2 = 2, μ = 3)")
+
+# V̇ along (П.4) in the structured form the printed estimate (m14, c1 … c4, m24, c10, the α, β terms) bounds
+structured_Vdot = [
+    Term(-2 * quad(_x, S1 * _Ainv * B), text="−(∂V1/∂x)ᵀA⁻¹Bx = −2xᵀS1A⁻¹Bx"),
+    Term(-2 * quad(_x, S1 * _Ainv, Q(_q)), text="−2xᵀS1A⁻¹Q(y−B⁻¹Ax)"),
+    Term(-2 * quad(_x, S1 * _Ainv, _J), text="−2xᵀS1A⁻¹∫D(y(ξ)−B⁻¹Ax(ξ))dξ"),
+    Term(-2 * quad(_y, S2 * _Binv, Q(_y) + tau * D(_y)), text="−(∂V2/∂y)ᵀB⁻¹(Q(y)+τD(y))"),
+    Term(2 * quad(_y, S2 * _Binv, Q(_y) - Q(_q)), text="2yᵀS2B⁻¹(Q(y)−Q(y−B⁻¹Ax))"),
+    Term(2 * quad(_y, S2 * _Binv, _Jy - _J), text="2yᵀS2B⁻¹∫(D(y(ξ))−D(y(ξ)−B⁻¹Ax(ξ)))dξ"),
+    Term(2 * quad(S2 * _Binv * (Q(_q) + _J), _Binv, _K), text="−(∂²V2/∂y² ẏ)ᵀB⁻¹∫(ξ+τ−t)D(y(ξ))dξ"),
+    Term((alpha1 + beta1 * tau) * norm_squared(_x), text="(α1+β1τ)‖x‖²"),
+    Term(-alpha1 * norm_squared(x(t - tau)), text="−α1‖x(t−τ)‖²"),
+    Term(-beta1 * window_integral(norm_squared(x(xi)), tau), text="−β1∫‖x(ξ)‖²dξ"),
+    Term((alpha2 + beta2 * tau) * norm_squared(_y) ** 2, text="(α2+β2τ)‖y‖⁴"),
+    Term(-alpha2 * norm_squared(y(t - tau)) ** 2, text="−α2‖y(t−τ)‖⁴"),
+    Term(-beta2 * window_integral(norm_squared(y(xi)) ** 2, tau), text="−β2∫‖y(ξ)‖⁴dξ"),
+]
+
+#: V̇ along (П.4): the ∫D(y(ξ))dξ terms of V̇2 and of the weighted integral cancel, leaving −(∂V2/∂y)ᵀB⁻¹(Q + τD)
+derivation = DerivativeClaim("Vdot_structured", functional, system_P4, structured_Vdot,
+                             description="V̇ along (П.4) in the structured form of the estimate with m14, c1…c4, "
+                                         "m24, c10 (the key term −(∂V2/∂y)ᵀB⁻¹(Q(y)+τD(y)))")
+
+_A_B = tuple(A.free_symbols | B.free_symbols)
+_G = tuple(B.free_symbols | Q(sympy.symbols("u1 u2")).free_symbols | D(sympy.symbols("u1 u2")).free_symbols | {tau})
 
 theorem2 = Theorem(
     "theorem2",
     title="Theorem 2 (decomposition): (7), (8) asymptotically stable ⇒ (1) asymptotically stable; "
           "instance n = 2, μ = 3, A, B not symmetric",
-    system=system1,
+    system=system_P4,
+    functional=functional,
     hypotheses=[
         Hypothesis("mu > 1", MU - 1, reference="(Theorem 2)"),
         Decided("Q, D homogeneous of order μ", homogeneous_of_order, reference="(1)"),
@@ -77,7 +154,8 @@ theorem2 = Theorem(
         Decided("(7) asymptotically stable", decide_7, reads=_A_B, reference="(7)"),
         Decided("(8) asymptotically stable", decide_8, reads=_G, reference="(8)"),
         Decided("1 < (ν2+μ−1)/ν1 < μ", lambda sub: decide_order(NU1, NU2, MU), reference="(proof of Theorem 2)"),
+        P4_along_1,
     ],
-    printed=printed,
+    claims=[derivation],
     paper=PAPER,
 )
