@@ -24,7 +24,12 @@ the run (never on the last sample alone):
   ``rate``: E' ≥ −α̃ h E^λ) stays above ``fraction`` · E(T).  It is the algebraic analogue of
   :class:`~lkverify.simulate.experiments.BoundedNotAttractive` (λ = 1 there).
 
-Both are ``simulated`` results (observed along numerical trajectories) or ``failed``.
+Both are ``simulated`` results (observed along numerical trajectories) or ``failed``.  With
+``damping=None`` the claims take h from the run's parameter ``h`` (so ``--set h=…`` is followed).
+
+What a finite run cannot show: the energy is monotone for any h ≥ 0, and over a tail where it
+changes by a few per cent (E ~ t^{−1/8}) an energy tending to a small positive level has the
+same steady rates.  The verdict rests on the law and on ∫_T^∞ h (exact), as Remark 2's does.
 
 >>> import numpy as np
 >>> t = np.linspace(0.0, 10.0, 11); E = 1.0 / (1.0 + 2.0 * t)       # E' = −2E², h ≡ 1, λ = 2
@@ -92,7 +97,7 @@ class _AlgebraicClaim(RunClaim):
 
     run: str
     measure: Callable
-    damping: object  # the damping h as an expression in t (or a string)
+    damping: object = None  # h as an expression in t (or a string); None: the run's parameter ``h``
     order: float = 2.0
     tail: float = 0.5
     windows: int = 8
@@ -108,7 +113,22 @@ class _AlgebraicClaim(RunClaim):
             problems.append(f"windows: expected at least 2 windows, got {self.windows!r}")
         if problems:
             raise InputError(f"{type(self).__name__}({self.run!r}): " + "; ".join(problems))
-        _damping_expr(self.damping)  # an expression in t, parsed safely (raises InputError otherwise)
+        if self.damping is not None:
+            _damping_expr(self.damping)  # an expression in t, parsed safely (raises InputError otherwise)
+
+    def _damping(self, tr):
+        """h(t): the claim's, or (``damping=None``) the run's resolved parameter ``h`` (so --set h=… is followed)."""
+        import sympy
+
+        from ..declare.symbols import t as tsym
+
+        if self.damping is not None:
+            return _damping_expr(self.damping)
+        if "h" not in tr.values:
+            raise InputError(f"{type(self).__name__}({self.run!r}): damping=None takes the run's parameter h, but "
+                             f"the run has no h; pass damping='(1+t)**(-1/2)' (an expression in t)")
+        h = tr.values["h"]
+        return _damping_expr(h(tsym) if isinstance(h, sympy.Lambda) else h)
 
     def _measure(self, trajectories):
         import scipy.integrate
@@ -116,15 +136,16 @@ class _AlgebraicClaim(RunClaim):
 
         from ..declare.symbols import t as tsym
 
-        h = sympy.lambdify([tsym], _damping_expr(self.damping), modules="numpy")
         tr = trajectories[self.run]
+        hexpr = self._damping(tr)
+        h = sympy.lambdify([tsym], hexpr, modules="numpy")
         E = np.asarray(along(self.measure, tr.states, tr.values), dtype=float)
         edges, rates = window_rates(tr.t, E, lambda a, b: scipy.integrate.quad(h, a, b, limit=200)[0],
                                     order=float(self.order), tail=float(self.tail), windows=int(self.windows))
         i0 = int(np.searchsorted(tr.t, edges[0]))
         slope = (float(np.log(E[-1] / E[i0]) / np.log((1 + tr.t[-1]) / (1 + tr.t[i0])))
                  if E[-1] > 0 and E[i0] > 0 and tr.t[-1] > tr.t[i0] else float("nan"))
-        return tr, E, edges, rates, _tail_integral(self.damping, float(tr.t[-1])), slope
+        return tr, E, edges, rates, _tail_integral(hexpr, float(tr.t[-1])), slope, hexpr
 
 
 @dataclasses.dataclass(frozen=True)
@@ -173,7 +194,7 @@ class DecaysAlgebraically(_AlgebraicClaim):
         return f"{self.run}: energy decays to 0 (algebraically, order {float(self.order):g})"
 
     def check(self, example, trajectories):
-        tr, E, edges, rates, tail, slope = self._measure(trajectories)
+        tr, E, edges, rates, tail, slope, hexpr = self._measure(trajectories)
         lo, hi = min(rates), max(rates)
         lam = float(self.order)
         steady = bool(np.all(np.isfinite(rates)) and lo > 0 and lo >= self.steady * hi)
@@ -181,7 +202,7 @@ class DecaysAlgebraically(_AlgebraicClaim):
         # with the slowest rate: ∫_T^{t*} h = (f^{1−λ} − 1) E(T)^{1−λ} / ((λ−1) k_min)
         need = ((self.fraction ** (1 - lam) - 1) * E[-1] ** (1 - lam) / ((lam - 1) * lo)
                 if lo > 0 and E[-1] > 0 else float("inf"))
-        t_star = None if np.isfinite(tail) else _time_for_integral(self.damping, float(tr.t[-1]), need)
+        t_star = None if np.isfinite(tail) else _time_for_integral(hexpr, float(tr.t[-1]), need)
         value = {"rates": rates, "window_edges": edges, "tail_integral": tail, "energy_end": float(E[-1]),
                  "energy_tail_start": float(E[int(np.searchsorted(tr.t, edges[0]))]), "loglog_slope": slope,
                  "integral_to_fraction": need, "t_fraction": t_star}
@@ -229,7 +250,7 @@ class LimitAboveFloor(_AlgebraicClaim):
         return f"{self.run}: bounded, energy tends to a positive limit"
 
     def check(self, example, trajectories):
-        tr, E, edges, rates, tail, slope = self._measure(trajectories)
+        tr, E, edges, rates, tail, slope, _ = self._measure(trajectories)
         d = np.asarray(along(example.distance, tr.states, tr.values), dtype=float)
         k = float(self.rate) if self.rate is not None else max(0.0, float(np.nanmax(rates)))
         lower = _limit(float(E[-1]), k, tail, float(self.order))

@@ -23,7 +23,9 @@ base-frame axes are assumed.
 Modules: :mod:`.equations` (parameters, states, (2), (9)), :mod:`.theorem1`,
 :mod:`.theorem1_bound` (the printed h^{ν−1}ḣ step, refuted for decreasing h, and its corrected form),
 :mod:`.example` (section 6), :mod:`.lemma1` (Lemma 1 with a certified δ(ε)),
-:mod:`.conditions_h` (conditions (5), (10), (11) on h decided symbolically; Corollary 1).
+:mod:`.conditions_h` (conditions (5), (10), (11) on h decided symbolically; Corollary 1),
+:mod:`.theorem2` (nonlinear damping), :mod:`.theorem2_example` (Theorem 2 / Corollary 2 simulated),
+:mod:`.theorem2_envelope` (the algebraic envelope with α8 estimated).
 """
 
 from .equations import PAPER, D, J, P, a1, a2, eps, eta, gamma, h, nu, omega, r1, r2, r3, s1, s2, s3, system
@@ -34,6 +36,8 @@ from .lemma1 import EPSILONS, Lemma1Constants, lemma1, lemma1_delta, lemma1_F
 from .conditions_h import ConditionsOnH, corollary1, decide_h_conditions
 from .remark2 import remark2
 from .theorem2 import system4, theorem2
+from .theorem2_example import theorem2_example
+from .corollary2 import corollary2
 
 __all__ = [
     "PAPER",
@@ -51,4 +55,8 @@ __all__ = [
     "remark2",
     # Theorem 2 (nonlinear damping)
     "system4", "theorem2",
+    # Theorem 2 / Corollary 2 simulated (β = 7/8 and 8/7), the algebraic envelope with α8 estimated
+    "theorem2_example",
+    # Corollary 2
+    "corollary2",
 ]

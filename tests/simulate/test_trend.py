@@ -99,3 +99,17 @@ def test_bad_arguments_are_refused(kw):
     args = {"run": "r", "measure": energy, "damping": HALF, **kw}
     with pytest.raises(InputError):
         DecaysAlgebraically(**args)
+
+
+def test_damping_none_follows_the_runs_h():
+    P = Parameters()
+    h = P.coefficient("h", default="(1+t)**(-1/2)")
+    sys = System([Equation(x, [Term(-h(t) * x(t)[0] ** 3)])], parameters=P)
+    ex = Example("demo", runs=[Run("r", sys, history={"x": [1]})], t_end=50, series=[],
+                 distance=lambda s: abs(s["x"][:, 0]), samples=501)
+    claim = DecaysAlgebraically("r", energy)
+    assert claim.check(ex, ex.simulate()).status is Status.SIMULATED
+    other = claim.check(ex, ex.simulate({"h": "(1+t)**(-2)"}))           # the run's h changed: ∫h < ∞ now
+    assert other.status is Status.FAILED and other.value["tail_integral"] == pytest.approx(1 / 51)
+    with pytest.raises(InputError, match="no h"):
+        claim.check(*_example(-x(t)[0] ** 3))
