@@ -1,0 +1,20 @@
+"""Linear delay systems: spectra, crossing delays, LK LMI hierarchies, delay margins.
+
+:mod:`.model`
+    :class:`LinearDelaySystem` ẋ = A x + A_d x(t−h) + ∫_{t−h}^t K(t−s) x(s) ds, built from matrices;
+:mod:`.spectrum`
+    the rightmost characteristic roots (Breda–Maset–Vermiglio pseudospectral generator, Newton
+    refinement on the characteristic equation), ``estimated``;
+:mod:`.crossing`
+    the delay margin and the stability intervals from the crossing frequencies (exact resultant),
+    ``estimated``.
+"""
+
+from .crossing import Crossing, StabilityIntervals, crossing_frequencies, stability_intervals
+from .model import LinearDelaySystem, parse_delay
+from .spectrum import Spectrum, generator_matrix, rightmost_roots, spectral_abscissa
+
+__all__ = [
+    "Crossing", "LinearDelaySystem", "Spectrum", "StabilityIntervals", "crossing_frequencies", "generator_matrix",
+    "parse_delay", "rightmost_roots", "spectral_abscissa", "stability_intervals",
+]
