@@ -50,6 +50,7 @@ from .section6 import FIG7_HISTORY, PRINTED_15, R_TARGET, SECTION6
 from .theorem3_constants import THEOREM3_CONSTANTS
 from .section6_conditions import section6
 from .theorem1 import theorem1
+from .theorem1_bound import theorem1_bound
 from .theorem2 import theorem2
 from .theorem2_example import theorem2_counter, theorem2_example
 
@@ -64,7 +65,7 @@ __all__ = [
     "R_TARGET", "SECTION6", "FIG7_HISTORY", "PRINTED_15",
     "fig1", "fig2", "fig3", "fig4", "fig5", "fig6", "fig7", "fig7_chi", "section6",
     # Theorem 1 (system (3), functional (П.1))
-    "theorem1",
+    "theorem1", "theorem1_bound",
     # Theorem 2 (decomposition, section 4)
     "theorem2", "theorem2_example", "theorem2_counter",
 ]

@@ -29,7 +29,7 @@ from lkverify import Equation, Parameters, System, Term, Vector, norm_squared, t
 
 __all__ = ["P3", "A", "B", "tau", "mu", "sigma", "p0", "kappa_t", "lam", "alpha", "beta", "q", "v", "x1", "x2",
            "X", "Pi", "Pi_t", "phi", "J2", "grad", "grad_Pi", "grad_Pi_t", "skew", "system3", "PI_COEFFS",
-           "PHI_COEFFS", "delta_q", "delta_v"]
+           "PHI_COEFFS", "delta_q", "delta_v", "eta_w", "eta_K", "eta", "eta_j"]
 
 P3 = Parameters()
 A = P3.spd_matrix("A", 2, default="[[2, 1], [1, 2]]", description="inertia matrix A of (3), symmetric, A ≻ 0")
@@ -57,6 +57,11 @@ beta = P3.scalar("beta", positive=True, latex=r"\beta")
 # the region of (П.2), (П.3): max_{[t−τ,t]} ‖q(ξ)‖ ≤ δ_q, ‖q̇(t)‖ ≤ δ_v (chosen by the proof)
 delta_q = P3.scalar("delta_q", positive=True, latex=r"\delta_q", description="region: max over the window of ‖q‖")
 delta_v = P3.scalar("delta_v", positive=True, latex=r"\delta_v", description="region: ‖q̇(t)‖")
+# the parameters of Young's inequality in the chain (chosen by the proof)
+eta_w = P3.scalar("eta_w", positive=True, latex=r"\eta_w", description="Young: ‖q‖‖q̇‖ in V ≥ L")
+eta_K = P3.scalar("eta_K", positive=True, latex=r"\eta_K", description="Young: ‖q‖(∫‖q‖^{μ+1})^{μ/(μ+1)} in V ≥ L")
+eta = P3.scalar("eta", positive=True, latex=r"\eta", description="Young: ‖q̇‖‖q‖^μ in V̇ ≤ W")
+eta_j = P3.scalar("eta_j", positive=True, latex=r"\eta_j", description="Young: ‖q̇‖(∫‖q‖^{μ+1})^{μ/(μ+1)} in V̇ ≤ W")
 
 q = Vector("q", 2)
 v = Vector("v", 2, latex=r"\dot q", text="q̇")

@@ -57,6 +57,8 @@ from ...status import Status
 from ..matrices import matrix_positive_definite
 from .measures import Measure, Region
 
+_T_NONNEGATIVE = sympy.Symbol("t", nonnegative=True)  # t on its domain t ≥ 0 (Context.zero)
+
 __all__ = ["Application", "CauchySchwarz", "Context", "Equal", "Nonpositive", "Norm", "Printed", "Rayleigh", "Rule",
            "Template", "WindowWeight", "Young", "Homogeneous", "crossed", "integral_of", "mapped", "measured", "nonnegative",
            "scaled", "summed", "unit"]
@@ -139,17 +141,30 @@ class Context:
 
     def pointwise(self, expr):
         """``expr`` with the pointwise-norm symbols of the window measures replaced by their definitions."""
-        rep = {m.pointwise_symbol: self.at(m.pointwise()) for m in self.measures.values() if m.kind != "norm"}
-        return sympy.sympify(expr).xreplace(rep)
+        expr = sympy.sympify(expr)
+        present = expr.free_symbols  # only the symbols that occur: each substitution costs
+        rep = {m.pointwise_symbol: self.at(m.pointwise()) for m in self.measures.values()
+               if m.kind != "norm" and m.pointwise_symbol in present}
+        return expr.xreplace(rep)
 
     def zero(self, expr) -> bool:
-        """Is ``expr`` exactly 0 on the state manifold (unit vectors, frames)?"""
+        """Is ``expr`` exactly 0 on the state manifold (unit vectors, frames) for t ≥ 0?
+
+        Time runs on t ≥ 0, so explicit powers of t are normalised with t nonnegative
+        (√((1+t)^(−7/4)) = (1+t)^(−7/8), as a coefficient h(t) and its measure |h(t)| give) and
+        an expression with explicit t is put over one denominator before its numerator is tested.
+        """
         e = sympy.expand(self.pointwise(self.at(expr)))
+        if e != 0 and e.has(t):  # explicit time: over one denominator (nonzero on t ≥ 0), its numerator
+            e = e.xreplace({t: _T_NONNEGATIVE}).xreplace({_T_NONNEGATIVE: t})
+            e = sympy.expand(sympy.fraction(sympy.together(e))[0])
         if e == 0:
             return True
         from ...symbolic.canonical import Canonicalizer
 
-        canon = Canonicalizer(self.system.constraint_polynomials)
+        canon = self.__dict__.get("_canonicalizer")  # one per context: its Gröbner bases are reused
+        if canon is None:
+            canon = self._canonicalizer = Canonicalizer(self.system.constraint_polynomials)
         return canon.normal_forms([e]).polys[0] == 0
 
 
@@ -1126,12 +1141,20 @@ class Template(Rule):
                 value = ref + E * (-sympy.sin(rho / 2) * ref + sympy.cos(rho / 2) * n)
                 box.update(cap.region)
                 back[E] = 2 * sympy.sin(rho / 2)
-            else:
+            elif state.dim == 2:  # v = W·(cos θ, sin θ), θ ∈ [0, 2π]
+                th = sympy.Dummy(f"theta{k}", real=True)
+                value = ref + E * sympy.Matrix([sympy.cos(th), sympy.sin(th)])
+                box[th] = (0, 2 * sympy.pi)
+                flips.append((E, th, sympy.pi))
+            elif state.dim == 3:
                 th, ph = sympy.Dummy(f"theta{k}", real=True), sympy.Dummy(f"phi{k}", real=True)
                 ch = unit_vector_angles(th, ph)
                 value = ref + E * ch.value
                 box.update(ch.region)
-                flips.append((E, th))
+                flips.append((E, th, sympy.pi / 2))
+            else:
+                raise InputError(f"Template {self.constant}: measure {name} is the norm of a {state.dim}-vector; "
+                                 f"the chart covers vectors of dimension 2 or 3")
             for f, x in zip(state.functions, value):
                 rep[f(t)] = x
             den *= E ** power
@@ -1145,10 +1168,11 @@ class Template(Rule):
                                       "(a power of its norm remains after division)")
         if q.atoms(AppliedUndef) or q.has(sympy.Integral):
             raise _NotHomogeneous("the term involves states or histories that no measure of the template charts")
-        # a ratio even in a direction v̂ (v̂ → −v̂, i.e. E → −E) needs only the upper hemisphere θ ∈ [0, π/2]
-        for E, th in flips:
+        # a ratio even in a direction v̂ (v̂ → −v̂, i.e. E → −E) needs only half the directions
+        # (the upper hemisphere θ ∈ [0, π/2] in R³, θ ∈ [0, π] in R²)
+        for E, th, half in flips:
             if sympy.expand(q - q.xreplace({E: -E})) == 0:
-                box[th] = (0, sympy.pi / 2)
+                box[th] = (0, half)
         return q.xreplace(back), box
 
     def apply(self, term, direction, ctx):
