@@ -57,8 +57,6 @@ from ...status import Status
 from ..matrices import matrix_positive_definite
 from .measures import Measure, Region
 
-_T_NONNEGATIVE = sympy.Symbol("t", nonnegative=True)  # t on its domain t ≥ 0 (Context.zero)
-
 __all__ = ["Application", "CauchySchwarz", "Context", "Equal", "Nonpositive", "Norm", "Printed", "Rayleigh", "Rule",
            "Template", "WindowWeight", "Young", "Homogeneous", "crossed", "integral_of", "mapped", "measured", "nonnegative",
            "scaled", "summed", "unit"]
@@ -141,30 +139,17 @@ class Context:
 
     def pointwise(self, expr):
         """``expr`` with the pointwise-norm symbols of the window measures replaced by their definitions."""
-        expr = sympy.sympify(expr)
-        present = expr.free_symbols  # only the symbols that occur: each substitution costs
-        rep = {m.pointwise_symbol: self.at(m.pointwise()) for m in self.measures.values()
-               if m.kind != "norm" and m.pointwise_symbol in present}
-        return expr.xreplace(rep)
+        rep = {m.pointwise_symbol: self.at(m.pointwise()) for m in self.measures.values() if m.kind != "norm"}
+        return sympy.sympify(expr).xreplace(rep)
 
     def zero(self, expr) -> bool:
-        """Is ``expr`` exactly 0 on the state manifold (unit vectors, frames) for t ≥ 0?
-
-        Time runs on t ≥ 0, so explicit powers of t are normalised with t nonnegative
-        (√((1+t)^(−7/4)) = (1+t)^(−7/8), as a coefficient h(t) and its measure |h(t)| give) and
-        an expression with explicit t is put over one denominator before its numerator is tested.
-        """
+        """Is ``expr`` exactly 0 on the state manifold (unit vectors, frames)?"""
         e = sympy.expand(self.pointwise(self.at(expr)))
-        if e != 0 and e.has(t):  # explicit time: over one denominator (nonzero on t ≥ 0), its numerator
-            e = e.xreplace({t: _T_NONNEGATIVE}).xreplace({_T_NONNEGATIVE: t})
-            e = sympy.expand(sympy.fraction(sympy.together(e))[0])
         if e == 0:
             return True
         from ...symbolic.canonical import Canonicalizer
 
-        canon = self.__dict__.get("_canonicalizer")  # one per context: its Gröbner bases are reused
-        if canon is None:
-            canon = self._canonicalizer = Canonicalizer(self.system.constraint_polynomials)
+        canon = Canonicalizer(self.system.constraint_polynomials)
         return canon.normal_forms([e]).polys[0] == 0
 
 
