@@ -11,8 +11,8 @@ import sympy
 
 from lkverify import Status
 from lkverify.proofs.aleksandrov2023 import decomposition as dec
-from lkverify.proofs.aleksandrov2023.theorem2 import (P4_along_1, P4Along1, derivation, homogeneous_of_order,
-                                                     structured_Vdot, theorem2)
+from lkverify.proofs.aleksandrov2023.theorem2 import (S1, S2, P4_along_1, P4Along1, derivation,
+                                                     homogeneous_of_order, structured_Vdot, theorem2)
 from lkverify.proofs.aleksandrov2023.theorem2_example import theorem2_counter, theorem2_example
 
 
@@ -155,13 +155,36 @@ def _mutated_derivation(k, factor):
     return DerivativeClaim("mutated", derivation.functional, derivation.system, terms)
 
 
-@pytest.mark.slow
-@pytest.mark.parametrize("k, factor", [(3, -1), (6, 0), (0, 2)])  # key term sign, the c10 term dropped, m14 doubled
-def test_mutated_structured_Vdot_is_refuted(k, factor):
-    assert _mutated_derivation(k, factor).check({}, values={}).status is Status.FAILED
+def _instance_values():
+    keep = ("a11", "a12", "a21", "a22", "b11", "b12", "b21", "b22", "k1", "k2", "g", "d1", "d2", "tau")
+    return {k: v for k, v in dec.P2.resolve({}).items() if k in keep}
 
 
-def test_mutated_structured_Vdot_is_refuted_at_the_instance():
-    vals = {k: v for k, v in dec.P2.resolve({}).items() if k in ("a11", "a12", "a21", "a22", "b11", "b12", "b21",
-                                                                   "b22", "k1", "k2", "g", "d1", "d2", "tau")}
+def test_mutated_structured_Vdot_is_refuted_at_the_instance():  # the key term −(∂V2/∂y)ᵀB⁻¹(Q+τD) with its sign flipped
+    vals = _instance_values()
     assert _mutated_derivation(3, -1).check(dec.P2.substitution(vals), values=vals).status is Status.FAILED
+
+
+# the c10 term −(∂²V2/∂y² ẏ)ᵀB⁻¹∫(ξ+τ−t)D(y(ξ))dξ dropped, m14's term doubled; with every parameter symbolic a
+# nonzero difference does not reduce within a minute (undecided), so these are checked at the instance's A, B, Q, D
+@pytest.mark.slow
+@pytest.mark.parametrize("k, factor", [(6, 0), (0, 2)])
+def test_other_mutations_of_the_structured_Vdot_are_refuted(k, factor):
+    vals = _instance_values()
+    assert _mutated_derivation(k, factor).check(dec.P2.substitution(vals), values=vals).status is Status.FAILED
+
+
+def test_structured_Vdot_written_differently_holds_at_the_instance():
+    # the key term split into −(∂V2/∂y)ᵀB⁻¹Q(y) and −τ(∂V2/∂y)ᵀB⁻¹D(y), the m14 term as −xᵀ(S1A⁻¹B + (S1A⁻¹B)ᵀ)x
+    from lkverify import DerivativeClaim, Term, quad, t
+
+    x_t, y_t = sympy.Matrix(dec.x(t)), sympy.Matrix(dec.y(t))
+    Binv = dec.B.inv()
+    terms = list(structured_Vdot)
+    M = S1 * dec.A.inv() * dec.B
+    terms[0] = Term(-quad(x_t, M + M.T), text="−xᵀ(S1A⁻¹B + (S1A⁻¹B)ᵀ)x")
+    terms[3:4] = [Term(-2 * quad(y_t, S2 * Binv, dec.Q(y_t)), text="−2yᵀS2B⁻¹Q(y)"),
+                  Term(-2 * dec.tau * quad(y_t, S2 * Binv, dec.D(y_t)), text="−2τyᵀS2B⁻¹D(y)")]
+    vals = _instance_values()
+    claim = DerivativeClaim("written differently", derivation.functional, derivation.system, terms)
+    assert claim.check(dec.P2.substitution(vals), values=vals).status is Status.EXACT
