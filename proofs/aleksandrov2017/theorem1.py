@@ -9,6 +9,11 @@ and the paper prints V̇ along (2),(9) exactly; that print is checked below term
 (a time-varying coefficient: ḣ enters through ∂/∂t).  Conditions (5), (10), (11) on the run's
 h and ν are decided symbolically (:mod:`.conditions_h`): e.g. ``--set "h=(1+t)**(-6/5)"`` fails
 (11) for every ν ≥ 1 (Corollary 1: β ≤ 1 is needed).
+
+The proof is checked to its conclusion by :mod:`.theorem1_chain`: V ≥ L, V ≤ U, V̇ ≤ W term by
+term on ‖s_i − r_i‖ ≤ δ1 (Lemma 1 certified there, (10) decided with its exact L), then (12)
+V̇ ≤ −α7 h^ν V for 0 < h ≤ sup h and the envelope (:class:`~lkverify.certify.steps.timevarying.TimeVaryingRate`),
+(11) decided; the choices γ, ε, δ1, η_h, η_D, α7 are found at the run's gains.
 """
 
 from lkverify import DerivativeClaim, Functional, Hypothesis, Term, Theorem, cross, dot, norm_squared, quad, t
@@ -41,15 +46,19 @@ printed_Vdot = [
          latex=r"-\gamma h^\nu(t)\omega^\top J(a_1(\omega\times s_1)\times r_1+a_2(\omega\times s_2)\times r_2)"),
 ]
 
+from .theorem1_chain import CONCLUSION, derivation, find_choices, steps  # noqa: E402  (it imports functional)
+
 theorem1 = Theorem(
     "theorem1",
-    title="Theorem 1: linear damping 2h(t)Dω with h → 0; the printed V̇ checked",
+    title="Theorem 1: linear damping 2h(t)Dω with h → 0; the printed V̇ and the proof checked to (12) and the envelope",
     system=system,
     functional=functional,
     hypotheses=[Hypothesis("nu >= 1", nu - 1, strict=False, reference="(10), (11)"),
                 ConditionsOnH("(5), (10), (11) on h", h, nu, reference="(5), (10), (11)")],
     claims=[DerivativeClaim("Vdot_printed", functional, system, printed_Vdot,
-                            description="the printed V̇ along (2),(9), as printed")],
-    unchecked=["the bounds with α1…α7 and the region δ2", "Lemma 1"],
+                            description="the printed V̇ along (2),(9), as printed"), derivation],
+    steps=steps,
+    decay=CONCLUSION,
+    choices=find_choices,
     paper=PAPER,
 )

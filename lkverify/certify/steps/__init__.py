@@ -13,6 +13,9 @@
 * :mod:`.memory` — memory integrals ∫_0^t κ(t − ξ)‖v(ξ)‖^p dξ as measures, and their rules
   (the integral written in its measures, a kernel bound, Hölder on the memory, the region's
   bound, Krasovskii's conclusion with integrable kernels).
+* :mod:`.timevarying` — time-varying rates: :class:`TimeVaryingRate` (V̇ ≤ −α h^ν(t) V from
+  steps whose coefficients are powers of h(t), and the envelope) and :class:`UpperBound`
+  (a measure replaced by a bound a decided condition gives).
 * :mod:`.chain` — :class:`TermwiseBound`: ``lhs ≤ rhs`` with lhs a sum of labelled terms
   of V or of the exact V̇, each term bounded by a rule, the bounds summed and compared
   with rhs on the region.
@@ -26,6 +29,7 @@ from .quadratic import BoundClaim, QuadraticForms, StepResult, quadratic_upper_b
 from .rules import (CauchySchwarz, Context, Equal, Nonpositive, Printed, Rayleigh, Template, WindowWeight, Young,
                     crossed, integral_of, measured, scaled, unit)
 from .witnesses import UnsupportedClaim, Witness, search_witness
+from .timevarying import TimeVaryingRate, UpperBound, sup_in_t, sup_on
 
 __all__ = ["BoundClaim", "CauchySchwarz", "ChainResult", "Context", "Decay", "Equal", "Measure", "Nonpositive",
            "Printed", "QuadraticForms", "Rayleigh", "Region", "StepResult", "Template", "TermBound", "TermResult",
@@ -34,3 +38,4 @@ __all__ = ["BoundClaim", "CauchySchwarz", "ChainResult", "Context", "Decay", "Eq
            "window_integral_measure", "window_norm",
            "Evaluated", "KernelBound", "MemoryHolder", "MemoryKrasovskii", "MemoryMeasure", "MemoryWeight",
            "memory_integral_of", "memory_measure"]
+__all__ += ["TimeVaryingRate", "UpperBound", "sup_in_t", "sup_on"]

@@ -57,6 +57,8 @@ from ...status import Status
 from ..matrices import matrix_positive_definite
 from .measures import Measure, Region
 
+_T_NONNEGATIVE = sympy.Symbol("t", nonnegative=True)  # t on its domain t ≥ 0 (Context.zero)
+
 __all__ = ["Application", "CauchySchwarz", "Context", "Equal", "Nonpositive", "Norm", "Printed", "Rayleigh", "Rule",
            "Template", "WindowWeight", "Young", "Homogeneous", "crossed", "integral_of", "mapped", "measured", "nonnegative",
            "scaled", "summed", "unit"]
@@ -143,8 +145,16 @@ class Context:
         return sympy.sympify(expr).xreplace(rep)
 
     def zero(self, expr) -> bool:
-        """Is ``expr`` exactly 0 on the state manifold (unit vectors, frames)?"""
+        """Is ``expr`` exactly 0 on the state manifold (unit vectors, frames) for t ≥ 0?
+
+        Time runs on t ≥ 0, so explicit powers of t are normalised with t nonnegative
+        (√((1+t)^(−7/4)) = (1+t)^(−7/8), as a coefficient h(t) and its measure |h(t)| give) and
+        an expression with explicit t is put over one denominator before its numerator is tested.
+        """
         e = sympy.expand(self.pointwise(self.at(expr)))
+        if e != 0 and e.has(t):  # explicit time: over one denominator (nonzero on t ≥ 0), its numerator
+            e = e.xreplace({t: _T_NONNEGATIVE}).xreplace({_T_NONNEGATIVE: t})
+            e = sympy.expand(sympy.fraction(sympy.together(e))[0])
         if e == 0:
             return True
         from ...symbolic.canonical import Canonicalizer
