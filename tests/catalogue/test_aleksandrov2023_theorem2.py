@@ -136,10 +136,21 @@ def test_P4_written_differently_still_holds():
 
 
 def test_counter_instances_do_not_converge_and_the_instance_converges():
-    rep = theorem2_counter.run()
+    trs = theorem2_counter.simulate()
+    rep = theorem2_counter.run(trajectories=trs)
     assert rep.holds, rep.verdict
-    rep = theorem2_example.run()
+    # the instance's claims must fail on the counter-instances' runs
+    decays = theorem2_example.claims[1]
+    for label in trs:
+        relabelled = {decays.run: trs[label]}
+        assert decays.check(theorem2_example, relabelled).status is Status.FAILED, label
+        assert theorem2_example.claims[0].check(theorem2_example, relabelled).status is Status.FAILED, label
+    instance = theorem2_example.simulate()
+    rep = theorem2_example.run(trajectories=instance)
     assert rep.holds, rep.verdict
+    # and the counter-instances' claim fails on the instance's run
+    grows = theorem2_counter.claims[0]
+    assert grows.check(theorem2_counter, {grows.run: instance["instance"]}).status is Status.FAILED
 
 
 def test_mutated_print_fails_the_P4_link_at_the_run_values():
