@@ -46,7 +46,7 @@ printed_Vdot = [
          latex=r"-\gamma h^\nu(t)\omega^\top J(a_1(\omega\times s_1)\times r_1+a_2(\omega\times s_2)\times r_2)"),
 ]
 
-from .theorem1_chain import CONCLUSION, derivation, find_choices, steps  # noqa: E402  (it imports functional)
+from .theorem1_chain import CONCLUSION, EnvelopeAgainstRun, derivation, find_choices, steps  # noqa: E402  (it imports functional)
 
 theorem1 = Theorem(
     "theorem1",
@@ -60,5 +60,6 @@ theorem1 = Theorem(
     steps=steps,
     decay=CONCLUSION,
     choices=find_choices,
+    constants=EnvelopeAgainstRun(),
     paper=PAPER,
 )

@@ -49,7 +49,8 @@ from .conditions_h import decide_h_conditions
 from .equations import P, D, J, a1, a2, eps, eta, gamma, h, nu, omega, r1, r2, s1, s2, system
 from .theorem1 import functional
 
-__all__ = ["CONCLUSION", "REGION", "chain_steps", "derivation", "find_choices", "lemma6", "steps"]
+__all__ = ["CONCLUSION", "EnvelopeAgainstRun", "REGION", "chain_steps", "condition10", "condition11", "derivation",
+           "find_choices", "lemma6", "steps"]
 
 
 def _scalar(name, **kw):
@@ -372,3 +373,114 @@ def find_choices(values) -> dict:
     out = {n: str(v) for n, v in zip(CHOICES, xs)}
     out.update(eps=str(eps_), delta1=str(delta1_), alpha7=str(alpha))
     return out
+
+
+# ---- the envelope against the section 6 run (lkverify constants aleksandrov2017.theorem1) ---------
+def _integral_of_rate(h_expr, nu_value, times):
+    """∫_0^t h^ν for each t of ``times``: in closed form when SymPy finds it, else the trapezoid rule on them."""
+    T = sympy.Symbol("T", positive=True)
+    try:
+        F = sympy.integrate(h_expr**nu_value, (t, 0, T))
+        if not F.has(sympy.Integral, sympy.Piecewise):
+            return np.asarray(sympy.lambdify(T, F, "numpy")(times), dtype=float) * np.ones_like(times)
+    except (NotImplementedError, ValueError, TypeError):
+        pass
+    f = sympy.lambdify(t, h_expr**nu_value, "numpy")(times) * np.ones_like(times)
+    return np.concatenate([[0.0], np.cumsum((f[1:] + f[:-1]) / 2 * np.diff(times))])
+
+
+class EnvelopeAgainstRun:
+    """The constants job of Theorem 1: the certified chain's envelope against the section 6 run.
+
+    ``lkverify constants aleksandrov2017.theorem1`` checks the chain at the run's values (choices
+    found as in ``check``), takes the section 6 initial attitude and ω scaled down until
+    ‖x(t0)‖ < δ2 (so the solution stays in the region), simulates (2), (9) and compares along it
+
+        α1(‖ω‖² + Σ‖s_i − r_i‖²) ≤ V(t) ≤ V(t0) exp(−α7 ∫_0^t h^ν)
+
+    (status ``simulated``; the largest ratio V / envelope is reported, ≤ 1 when it holds).
+    """
+
+    goals = ["default"]
+    T_END = 400.0
+
+    def run(self, item_name, values, shown, *, budget=120.0, progress=None, goal=None):
+        """(Report, data for :meth:`plot`)."""
+        from lkverify import Report, Result
+        from lkverify.simulate import simulate
+
+        from .example import INITIAL, initial_history
+        from .theorem1 import theorem1
+
+        progress = progress or (lambda msg: None)
+        progress(f"{item_name}: the chain at the run's values")
+        report = theorem1.run(values, budget=budget)
+        res = {r.name: r for r in report.results}
+        rate = res.get("(12) V̇ ≤ −α7 h^ν V")
+        if rate is None or rate.value is None or rate.value.get("delta2") is None:
+            row = Result("simulation", "envelope against the section 6 run", Status.UNDECIDED, None,
+                         f"the chain gives no envelope at these values: {report.verdict}")
+            return Report(item_name, dict(shown), tuple(report.results) + (row,), report.verdict), {}
+        v = {**values, **{k: sympy.Rational(x) for k, x in theorem1.chosen(values).items()}}
+        alpha1_, alpha7_, delta2_ = rate.value["alpha1"], float(sympy.Rational(rate.value["alpha"])), \
+            rate.value["delta2"]
+        scale, hist = 1.0, None
+        for _ in range(12):  # the section 6 history, scaled until ‖x(t0)‖ < δ2
+            angles = tuple(scale * a for a in INITIAL.angles)
+            omega0 = tuple(scale * x for x in INITIAL.omega)
+            hist = initial_history(angles, omega0)
+            x0 = np.sqrt(sum(np.sum((np.array(hist[f"s{i}"]) - np.array([float(c) for c in v[f"r{i}"]])) ** 2)
+                             for i in (1, 2)) + np.sum(np.array(omega0) ** 2))
+            if x0 < 0.9 * delta2_:
+                break
+            scale /= 2
+        progress(f"{item_name}: simulating (2), (9) to t = {self.T_END:g} from ‖x(t0)‖ = {x0:.4g} < δ2 = {delta2_:.4g}")
+        times = np.linspace(0.0, self.T_END, 4001)
+        tr = simulate(system, history=hist, t_end=self.T_END, values={k: v[k] for k in ("J", "D", "a1", "a2", "h",
+                                                                                         "r1", "r2", "r3")},
+                      t_eval=times)
+        sub = P.substitution(v)
+        from lkverify.declare.parameters import apply_substitution
+
+        args = [c for state in system.states for c in state(t)]
+        V = sympy.lambdify([t, *args], apply_substitution(functional.expr, sub), "numpy")
+        cols = [tr.states[state.name][:, i] for state in system.states for i in range(state.dim)]
+        Vt = np.asarray(V(tr.t, *cols), dtype=float) * np.ones_like(tr.t)
+        r = {i: np.array([float(c) for c in v[f"r{i}"]]) for i in (1, 2)}
+        x2 = np.sum(tr.states["omega"] ** 2, axis=1) + sum(np.sum((tr.states[f"s{i}"] - r[i]) ** 2, axis=1)
+                                                          for i in (1, 2))
+        env = Vt[0] * np.exp(-alpha7_ * _integral_of_rate(_h_of(v), sympy.sympify(v["nu"]), tr.t))
+        ratio, low = float(np.max(Vt / env)), float(np.max(alpha1_ * x2 / Vt))
+        later = float(np.max((Vt / env)[tr.t >= 1.0]))  # equality at t0: the ratio after t = 1 says how loose
+        ok = ratio <= 1 + 1e-9 and low <= 1 + 1e-9
+        detail = (f"from the section 6 attitude and ω scaled by {scale:g} (‖x(t0)‖ = {x0:.4g} < δ2 = {delta2_:.4g}), "
+                  f"h = {_h_of(v)}, t ∈ [0, {self.T_END:g}], {tr.outcome.value}: max V(t)/(V(t0)exp(−α7∫h^ν)) = "
+                  f"{ratio:.4g} ({'≤ 1: the envelope holds' if ratio <= 1 + 1e-9 else '> 1: VIOLATED'}; = 1 at t0, "
+                  f"{later:.3g} over t ≥ 1), "
+                  f"max α1‖x(t)‖²/V(t) = {low:.4g} ({'≤ 1' if low <= 1 + 1e-9 else '> 1: VIOLATED'}); V(t_end)/V(t0) = "
+                  f"{Vt[-1] / Vt[0]:.3g} against the envelope's {env[-1] / env[0]:.3g} (α7 = {alpha7_:.4g}: valid, loose)")
+        row = Result("simulation", "envelope V(t) ≤ V(t0)exp(−α7∫h^ν) along the section 6 run",
+                     Status.SIMULATED if ok else Status.FAILED,
+                     {"largest_ratio": ratio, "largest_ratio_after_1": later, "largest_lower_ratio": low, "scale": scale, "x0": float(x0),
+                      "delta2": delta2_, "alpha7": alpha7_, "alpha1": alpha1_, "t_end": self.T_END}, detail)
+        verdict = f"{report.verdict.split(';')[0]}; envelope along the run: {row.status.value} (largest ratio {ratio:.4g})"
+        data = {"t": tr.t, "V": Vt, "envelope": env, "lower": alpha1_ * x2, "ratio": ratio}
+        return Report(item_name, dict(shown), tuple(report.results) + (row,), verdict), data
+
+    def plot(self, extra, path, *, values=None):
+        """V(t), its envelope and the lower bound α1‖x(t)‖² on a log scale."""
+        from matplotlib.figure import Figure
+
+        fig = Figure(figsize=(7.5, 4.5))
+        ax = fig.subplots()
+        if extra:
+            ax.semilogy(extra["t"], extra["envelope"], "k--", lw=1.2, label=r"$V(t_0)e^{-\alpha_7\int h^\nu}$")
+            ax.semilogy(extra["t"], extra["V"], lw=1.4, label=r"$V(t)$ (simulated)")
+            ax.semilogy(extra["t"], extra["lower"], lw=1.0, label=r"$\alpha_1\|x(t)\|^2$")
+            ax.set_title(f"Theorem 1 of paper 001: the envelope along the run (largest ratio {extra['ratio']:.3g})",
+                         fontsize=10)
+        ax.set_xlabel("$t$")
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(fontsize=8, loc="center left", bbox_to_anchor=(1.0, 0.5))
+        fig.tight_layout()
+        fig.savefig(path, dpi=120)

@@ -251,7 +251,27 @@ class TimeVaryingRate:
     link = "(12) V̇ ≤ −α h^ν(t) V on the region and the envelope V(t) ≤ V(t0) exp(−α∫h^ν)"
 
     def certify(self, steps, values, *, budget=None, progress=None, **_):
-        """(results, status, detail): the rate inequality, the envelope's constants, the side conditions."""
+        """(results, status, detail): the rate inequality, the envelope's constants, the side conditions.
+
+        A failing side condition (e.g. ∫h^ν < ∞) fails the link but the rate and the envelope
+        are still reported (they hold; they only do not tend to 0).
+        """
+        conds = list(self.conditions(values)) if self.conditions is not None else []
+        rows, status, detail = self._certify(steps, values)
+        if not rows:
+            rows = [Result("region", "(12) V̇ ≤ −α7 h^ν V", status, None, detail)]
+        rows += [Result("hypothesis", c.text, c.status, None, c.detail) for c in conds]
+        bad = [c for c in conds if not c.status.is_proof]
+        if bad:
+            c = bad[0]
+            detail = f"side condition {c.text}: {c.status.value} ({c.detail}); " + detail
+            status = Status.FAILED if Status.FAILED in (c.status, status) else _weakest([c.status, status])
+        elif status.is_proof:
+            status = _weakest([status] + [c.status for c in conds])
+            detail += "".join(f"; {c.text}" for c in conds)
+        return rows, status, detail
+
+    def _certify(self, steps, values):
         from ...declare.parameters import apply_substitution
 
         (ls, lres), (us, ures), (ws, wres) = (steps[r] for r in ("lower", "upper", "vdot"))
@@ -275,13 +295,6 @@ class TimeVaryingRate:
             return [], Status.UNDECIDED, f"sup_(t≥{self.t0}) h(t) of h = {h_of_t} not decided: {how}"
         if H is sympy.oo or not H.is_number:
             return [], Status.FAILED, f"h = {h_of_t} is not bounded on t ≥ {self.t0}: {how}"
-        conds = list(self.conditions(values)) if self.conditions is not None else []
-        bad = [c for c in conds if not c.status.is_proof]
-        if bad:
-            c = bad[0]
-            return [], Status.FAILED if c.status is Status.FAILED else Status.UNDECIDED, \
-                f"side condition {c.text}: {c.status.value} ({c.detail})"
-        statuses += [c.status for c in conds]
         syms = {m.symbol for s_ in (ls, us, ws) for m in s_.measures} - {x}
         point = [by_name[p].symbol for p in self.point]
         L, U, W = (collect_monomials(r.rhs, syms) for r in (lres, ures, wres))
@@ -303,8 +316,7 @@ class TimeVaryingRate:
         detail = (f"V̇ ≤ −{alpha}·h^{nu_} V for 0 < h ≤ H = {H} ({h_txt}); W + α h^ν U ≤ 0 coefficient-wise "
                   f"({status.value}; the largest α this test allows: {float(best):.4g}); α1 = {float(alpha1):.4g}"
                   + (f", α2 = {float(alpha2):.4g}; envelope α1‖x(t)‖² ≤ V(t) ≤ V(t0)exp(−{alpha}∫h^{nu_}) for "
-                     f"‖x(t0)‖ < δ2 = {float(delta2):.4g}" if delta2 is not None else "")
-                  + (f"; {'; '.join(c.text for c in conds)}" if conds else ""))
+                     f"‖x(t0)‖ < δ2 = {float(delta2):.4g}" if delta2 is not None else ""))
         value = {"alpha": str(alpha), "nu": str(nu_), "H": str(H), "alpha1": float(alpha1),
                  "alpha2": None if alpha2 is None else float(alpha2), "alpha_largest": float(best),
                  "delta2": None if delta2 is None else float(delta2)}
