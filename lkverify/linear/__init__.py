@@ -7,14 +7,24 @@
     refinement on the characteristic equation), ``estimated``;
 :mod:`.crossing`
     the delay margin and the stability intervals from the crossing frequencies (exact resultant),
-    ``estimated``.
+    ``estimated``;
+:mod:`.hierarchy`
+    the LK LMI hierarchy (Jensen, Wirtinger, Bessel–Legendre of order N; Seuret & Gouaisbaut 2015),
+    solved with cvxpy + Clarabel, rounded to rationals and re-verified exactly;
+:mod:`.margin`
+    the largest (and smallest) delay of a stability interval with a verified certificate, by bisection.
 """
 
 from .crossing import Crossing, StabilityIntervals, crossing_frequencies, stability_intervals
+from .hierarchy import (LmiCertificate, LmiResult, certify_delay, check_certificate, method_name, quick_check,
+                        solve_certificate)
+from .margin import CertifiedInterval, certified_interval
 from .model import LinearDelaySystem, parse_delay
 from .spectrum import Spectrum, generator_matrix, rightmost_roots, spectral_abscissa
 
 __all__ = [
+    "CertifiedInterval", "LmiCertificate", "LmiResult", "certified_interval", "certify_delay", "check_certificate",
+    "method_name", "quick_check", "solve_certificate",
     "Crossing", "LinearDelaySystem", "Spectrum", "StabilityIntervals", "crossing_frequencies", "generator_matrix",
     "parse_delay", "rightmost_roots", "spectral_abscissa", "stability_intervals",
 ]

@@ -49,7 +49,11 @@ SCAN_POINTS = 200
 
 @dataclasses.dataclass(frozen=True)
 class Crossing:
-    """A root on the imaginary axis: λ = iω at the delay h."""
+    """A root on the imaginary axis: λ = iω at the delay h.
+
+    >>> Crossing(6.17258, 0.43589).omega
+    0.43589
+    """
 
     h: float
     omega: float
@@ -69,6 +73,9 @@ class StabilityIntervals:
         ``"crossing"`` (exact resultant) or ``"scan"`` (grid of the spectral abscissa).
     status : Status
     detail : str
+
+    >>> StabilityIntervals(((0.0, 2.0),), (), 5.0, "crossing", Status.ESTIMATED, "").margin
+    2.0
     """
 
     intervals: tuple

@@ -56,6 +56,10 @@ class Spectrum:
     detail : str
     discretised : ndarray of complex
         All eigenvalues of the discretised generator (for plots).
+
+    >>> from lkverify.linear.model import LinearDelaySystem
+    >>> rightmost_roots(LinearDelaySystem([[-1]], Ad=[[0]]), 1.0).stable
+    True
     """
 
     h: float
@@ -105,7 +109,12 @@ def _clenshaw_curtis(N: int) -> np.ndarray:
 
 
 def generator_matrix(system: LinearDelaySystem, h: float, N: int = DEFAULT_NODES) -> np.ndarray:
-    """The n(N+1) pseudospectral matrix of the generator at delay h > 0 (block j ↔ θ_j = h(x_j − 1)/2)."""
+    """The n(N+1) pseudospectral matrix of the generator at delay h > 0 (block j ↔ θ_j = h(x_j − 1)/2).
+
+    >>> from lkverify.linear.model import LinearDelaySystem
+    >>> generator_matrix(LinearDelaySystem([[-1]], Ad=[[0]]), 1.0, N=4).shape
+    (5, 5)
+    """
     n = system.n
     A, Ad, D = system.floats_cached()
     x, Dx = chebyshev(N)
