@@ -260,6 +260,8 @@ class Theorem(Item):
             progress(f"{self.qualified_name}: {getattr(self.decay, 'link', 'the decay on the region')}")
             rows, status, detail = self.decay.certify(checked, everything, budget=_left(deadline),
                                                       progress=progress)
+            if not rows and not status.is_proof:  # a refuted or undecided conclusion is a result too (exit code)
+                rows = [Result("region", getattr(self.decay, "link", "decay on the region"), status, None, detail)]
             results += rows
             decay = Link(getattr(self.decay, "link", "decay on the region (V̇ ≤ −c̃V^p, envelope)"), status, detail)
         return Report(self.qualified_name, self.shown(everything, chosen), tuple(results),

@@ -24,6 +24,7 @@ from lkverify import Hypothesis, Theorem
 
 from .equations import PAPER
 from .system3 import mu, sigma, system3
+from .theorem1_chain import CONCLUSION, find_choices, steps
 from .theorem1_functional import derivation, functional, printed
 from .theorem1_hypotheses import homogeneity, positive_definite, skew_bound
 
@@ -45,5 +46,8 @@ theorem1 = Theorem(
     hypotheses=HYPOTHESES,
     claims=[derivation],
     printed=[printed],
+    steps=steps,
+    decay=CONCLUSION,
+    choices=find_choices,
     paper=PAPER,
 )

@@ -123,3 +123,79 @@ def test_the_item_reports_hypotheses_and_identities():
 def test_the_item_fails_on_an_indefinite_potential():
     rep = theorem1.run({"pi04": "-1/2"}, budget=60)
     assert rep.exit_code == 1 and rep.verdict.startswith("failed: hypotheses")
+
+
+# ---- the printed estimates with c1 … c12 (item theorem1_bound) ------------------------------------
+import importlib  # noqa: E402
+
+TB = importlib.import_module("lkverify.proofs.aleksandrov2023.theorem1_bound")  # the module (the item shadows it)
+from lkverify.proofs.aleksandrov2023 import theorem1_chain as TC  # noqa: E402
+from lkverify.certify.steps.chain import TermBound  # noqa: E402
+from lkverify.certify.steps.rules import Rayleigh  # noqa: E402
+
+
+def _bound_values(**over):
+    return P3.resolve({**TB.CHECK_VALUES, **{k: str(x) for k, x in over.items()}}, use_defaults=True)
+
+
+def test_printed_lower_and_vdot_estimates_are_proved_term_by_term():
+    vals = _bound_values()
+    assert TB.lower.check(vals, budget=30).status is Status.EXACT
+    res = TB.vdot.check(vals, budget=30)
+    assert res.status is Status.CERTIFIED  # c9, c11 and the P(q) constant are certified templates
+    # λp0 bounds the skew term (hypothesis (4)): the template constant is below λp0 = 11
+    assert res.constants["lam_skew"] <= 11 and res.constants["k11"] < 0
+
+
+def test_printed_upper_estimate_c3_qdot_qdot_is_refuted_and_the_corrected_one_proved():
+    vals = _bound_values()
+    bad = TB.upper_printed.check(vals, budget=30)
+    assert bad.status is Status.FAILED
+    (term,) = [r for r in bad.terms if r.status is Status.FAILED]
+    assert term.terms == ("qᵀAq̇",) and term.witness is not None
+    assert TB.upper_corrected.check(vals, budget=30).status is Status.EXACT
+
+
+def test_a_wrong_constant_in_a_printed_step_is_refuted():
+    """c7 = λ_max(B) instead of λ_min(B) in −λq̇ᵀBq̇ ≤ −λc7‖q̇‖²: the Rayleigh side condition fails, a witness refutes."""
+    from lkverify.proofs.aleksandrov2023.system3 import B
+
+    wrong = [TermBound("−λq̇ᵀBq̇", -lam * TB.c7 * TB.w**2,
+                       Rayleigh(v(t), B, factor=-lam, eigenvalue=TB._ctx_eig("max", B), norm_squared=TB.w**2))]
+    defs = {**TB.DEFINITIONS, TB.c7: TB.eig("max", "B")}
+    step = TB.vdot.with_bounds(bounds=wrong, rhs=-lam * TB.c7 * TB.w**2, part=("−λq̇ᵀBq̇",), definitions=defs)
+    assert step.check(_bound_values(), budget=20).status is Status.FAILED
+
+
+# ---- the chain to the conclusion ---------------------------------------------------------------
+def test_the_theorem_is_established_at_the_defaults():
+    rep = theorem1.run({}, budget=60)
+    assert rep.verdict.startswith("established"), rep.verdict
+    assert "Vdot_printed exact" in rep.verdict
+
+
+def test_the_chain_is_recomputed_at_other_gains():
+    rep = theorem1.run({"tau": "2"}, budget=60)
+    assert rep.verdict.startswith("established"), rep.verdict
+
+
+def test_a_region_too_large_fails_the_conclusion_with_the_coefficient_named():
+    rep = theorem1.run({"delta_q": "1/2"}, budget=60)
+    assert rep.exit_code == 1 and rep.verdict.startswith("failed"), rep.verdict
+    assert "L has the monomial e**2 with the coefficient" in rep.verdict
+    (row,) = [r for r in rep.results if r.status is Status.FAILED]
+    assert "Krasovskii" in row.name
+
+
+def test_young_with_a_wrong_parameter_in_a_chain_step_fails():
+    """η_w stated twice as large in V ≥ L: the rule's bound is not the stated one."""
+    from lkverify.proofs.aleksandrov2023.system3 import eta_w
+
+    lower = TC.steps[0]
+    bounds = list(lower.bounds)
+    k = next(i for i, tb in enumerate(bounds) if tb.terms == ("qᵀAq̇",))
+    tb = bounds[k]
+    bounds[k] = TermBound("qᵀAq̇", tb.bound.subs(eta_w, 2 * eta_w), tb.rule, then=tb.then)
+    vals = P3.resolve(TC.find_choices(P3.resolve({}, use_defaults=True)), use_defaults=True)
+    res = lower.with_bounds(bounds=bounds).check(vals, budget=20)
+    assert not res.status.is_proof
