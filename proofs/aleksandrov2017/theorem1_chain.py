@@ -124,6 +124,8 @@ def condition10(ctx) -> Condition:
     status, L, detail = _condition10(_h_of(ctx.values), sympy.sympify(ctx.values["nu"]))
     if status is Status.EXACT and L is None:
         return Condition("(10) with an exact L", Status.UNDECIDED, detail)
+    if L is None:
+        return Condition("(10) |ḣ| ≤ L h^((3−ν)/2) for t ≥ 0, some L", status, detail)
     return Condition(f"(10) |ḣ| ≤ L h^((3−ν)/2) for t ≥ 0 with L = {L}", status, detail)
 
 
@@ -276,6 +278,7 @@ def _model(values, eps_, delta1_):
     fixed = {k: v for k, v in values.items() if k not in (*CHOICES, "alpha7", "eps", "delta1")}
     sub = dict(system.parameters.substitution(fixed))
     consts = steps[2].named_constants(values)
+    consts[L10] = consts[L10] if consts[L10].is_number else sympy.S.One  # (10) not holding: the step says so
     state = {w, e1, e2, l, hw}
     out = {}
     for step in steps:
@@ -353,7 +356,8 @@ def find_choices(values) -> dict:
     model = _model(values, eps_, delta1_)
     # a feasible start (the proof's "γ small enough"): the e_i²-parts of the ḣ- and 2hDω-terms a quarter of
     # εa_i² each, then γ such that the h‖ω‖²-terms take half of −2λ_min(D)
-    dmin, dmax, jmax, L = (float(f(values)) for f in (_eig("D", "min"), _eig("D", "max"), _eig("J", "max"), _L10))
+    dmin, dmax, jmax = (float(f(values)) for f in (_eig("D", "min"), _eig("D", "max"), _eig("J", "max")))
+    L = float(_L10(values)) if _L10(values).is_number else 1.0  # (10) fails or is undecided: the step will say so
     a_lo, a_hi, a_sum = min(float(values["a1"]), float(values["a2"])), max(float(values["a1"]), float(values["a2"])), \
         float(values["a1"] + values["a2"])
     et_h = 2 * nu_ * jmax * L * a_hi / (float(eps_) * a_lo**2)

@@ -59,6 +59,11 @@ from .measures import Measure, Region
 
 _T_NONNEGATIVE = sympy.Symbol("t", nonnegative=True)  # t on its domain t ≥ 0 (Context.zero)
 
+
+def _explicit_time(e) -> bool:
+    """Does ``e`` have t outside the state functions (a coefficient h(t), ḣ(t) after the values)?"""
+    return any(a.has(t) and not a.atoms(AppliedUndef) for a in sympy.sympify(e).atoms(sympy.Pow, sympy.Function))
+
 __all__ = ["Application", "CauchySchwarz", "Context", "Equal", "Nonpositive", "Norm", "Printed", "Rayleigh", "Rule",
            "Template", "WindowWeight", "Young", "Homogeneous", "crossed", "integral_of", "mapped", "measured", "nonnegative",
            "scaled", "summed", "unit"]
@@ -151,10 +156,13 @@ class Context:
         (√((1+t)^(−7/4)) = (1+t)^(−7/8), as a coefficient h(t) and its measure |h(t)| give) and
         an expression with explicit t is put over one denominator before its numerator is tested.
         """
-        e = sympy.expand(self.pointwise(self.at(expr)))
-        if e != 0 and e.has(t):  # explicit time: over one denominator (nonzero on t ≥ 0), its numerator
-            e = e.xreplace({t: _T_NONNEGATIVE}).xreplace({_T_NONNEGATIVE: t})
-            e = sympy.expand(sympy.fraction(sympy.together(e))[0])
+        e = self.pointwise(self.at(expr))
+        if _explicit_time(e):  # on t ≥ 0; then over one denominator (nonzero for t ≥ 0), its numerator
+            e = sympy.expand(e.xreplace({t: _T_NONNEGATIVE}).xreplace({_T_NONNEGATIVE: t}))
+            if e != 0:
+                e = sympy.expand(sympy.fraction(sympy.together(e))[0])
+        else:
+            e = sympy.expand(e)
         if e == 0:
             return True
         from ...symbolic.canonical import Canonicalizer

@@ -361,10 +361,10 @@ class TimeVaryingRate:
                 continue
             wm, um = W.get(mono, sympy.S.Zero), U.get(mono, sympy.S.Zero) * x**nu_
             g = sympy.expand(wm + alpha * um)
-            parts = _powers(g, x)
-            if parts is None:
+            parts = [_powers(e, x) for e in (wm, um)]
+            if any(p_ is None for p_ in parts):
                 return None, f"the coefficient {g} of {mono} is not a sum of powers of {x}: not decided"
-            q = min((p for c, p in parts if c != 0), default=0)
+            q = min((p for c, p in parts[0] + parts[1] if c != 0), default=0)  # the lowest power of h in W_m, h^νU_m
             s, why = sup_on(sympy.expand(g / x**q), x, H)
             if s is None:
                 return None, f"fails at the monomial {mono}: W + α h^ν U has {why}"
