@@ -1,0 +1,90 @@
+"""Theorem 1 of paper 004: the adaptive control (2.7), (2.8) and its Lyapunov function (2.6).
+
+    (2.6)  V = ½[vᵀMv + θ_eᵀΓ⁻¹θ_e],  θ_e = θ_r − θ,
+    (2.7)  u = M_rω̇_r + ω_r × N(ω, L_0r) − K_d v,     M_r = diag(θ_r), N = M_rω,
+    (2.8)  θ̇_r = −ΓYᵀ(ω, ω_r, ω̇_r)v,
+    (2.9)  V̇ = −vᵀK_d v.
+
+Checked at the run's values (states and ω_d(t) symbolic): the first line of the proof
+V̇ = vᵀ(u − ω_r × N − Mω̇_r) + θ_eᵀΓ⁻¹θ̇_e (exact: vᵀ(v × Mω) = 0), and (2.9) (exact; it rests on
+(1.5): with a wrong Y it fails).  The hypotheses K_d ≻ 0, Γ ≻ 0, Λ > 0, kᵢ > 0 distinct, and
+V ≥ 0 (M ≻ 0, Γ⁻¹ ≻ 0) are exact.  The rest of the proof (v ∈ L2 ∩ L∞, Lemmas 1 and 3,
+Barbalat: e → 0, v → 0, θ_r and u bounded) is an argument about signals, not encoded: it is
+observed in :mod:`.example` (status ``simulated``).
+"""
+
+from __future__ import annotations
+
+import sympy
+
+from lkverify import Check, Result, Status, cross, dot, quad, t
+from lkverify.certify.matrices import matrix_positive_definite
+
+from .derive import compare, derivative, plain
+from .equations import (PAPER, Gamma, Kd, Lam, M, P, Y, k1, k2, k3, omega, omega_r, omega_r_dot, system1,
+                        theta, theta_r, v)
+
+__all__ = ["theorem1", "functional1", "theorem1_results", "hypotheses"]
+
+
+def _sub(values):
+    return P.substitution({k: x for k, x in values.items() if not k.startswith("wd")})
+
+
+def functional1(values):
+    """V of (2.6) at the run's values (Γ⁻¹ of the run's Γ, exact)."""
+    sub = _sub(values)
+    th_e = theta_r(t) - theta
+    Ginv = sympy.Matrix(values["Gamma"]).inv()
+    return (quad(v, M) / 2).xreplace(sub) + (th_e.T * Ginv * th_e)[0, 0] / 2
+
+
+def _pd(matrix, name, reference):
+    res = matrix_positive_definite(sympy.Matrix(matrix), name=name)
+    return Result("hypothesis", f"{name} ≻ 0 {reference}".strip(), res.status, None, res.detail)
+
+
+def hypotheses(values) -> list:
+    """K_d ≻ 0, Γ ≻ 0, M ≻ 0, Λ > 0 and kᵢ > 0 pairwise distinct (exact)."""
+    ks = [values["k1"], values["k2"], values["k3"]]
+    distinct = len(set(ks)) == 3 and all(sympy.sympify(k) > 0 for k in ks)
+    out = [_pd(values["Kd"], "K_d", "(2.7)"), _pd(values["Gamma"], "Γ", "(2.6), (2.8)"), _pd(values["M"], "M", "(1.3)")]
+    out.append(Result("hypothesis", "kᵢ > 0 pairwise distinct (2.1)", Status.EXACT if distinct else Status.FAILED,
+                      [str(k) for k in ks], f"k = {', '.join(map(str, ks))}"))
+    lam = sympy.sympify(values["Lam"])
+    out.append(Result("hypothesis", "Λ > 0 (2.1)", Status.EXACT if lam > 0 else Status.FAILED, str(lam), f"Λ = {lam}"))
+    return out
+
+
+def theorem1_results(values, *, system=system1) -> list:
+    """The identities of the proof of Theorem 1 along ``system`` (default: (2.7), (2.8))."""
+    sub = _sub(values)
+    V = functional1(values)
+    Vdot = derivative(V, system, sub)
+    th_e = theta_r(t) - theta
+    Ginv = sympy.Matrix(values["Gamma"]).inv()
+    M_r = sympy.diag(*theta_r(t))
+    u = M_r * omega_r_dot + cross(omega_r, M_r * omega(t)) - Kd * v                # (2.7)
+    theta_r_dot = -Gamma * Y(omega(t), omega_r, omega_r_dot).T * v                  # (2.8)
+    first = [("vᵀ(u − ω_r×Mω − Mω̇_r)", plain(dot(v, u - cross(omega_r, M * omega(t)) - M * omega_r_dot).xreplace(sub))),
+             ("θ_eᵀΓ⁻¹θ̇_e", plain((th_e.T * Ginv * theta_r_dot.xreplace(sub))[0, 0].xreplace(sub)))]
+    return [
+        compare("V̇ of (2.6): first line of the proof", first, [("V̇ derived", Vdot)],
+                reference="vᵀ(u − ω_r × N − Mω̇_r) + θ_eᵀΓ⁻¹θ̇_e"),
+        compare("(2.9): V̇ = −vᵀK_d v", [("−vᵀK_d v", plain(-quad(v, Kd).xreplace(sub)))], [("V̇ derived", Vdot)],
+                reference="(2.9)"),
+    ]
+
+
+def _check(values):
+    out = hypotheses(values)
+    out.append(Result("bound", "V ≥ 0: ½vᵀMv + ½θ_eᵀΓ⁻¹θ_e (2.6)",
+                      Status.EXACT if all(r.status is Status.EXACT for r in out[1:3]) else Status.FAILED, None,
+                      "a sum of two positive-definite forms (M ≻ 0, Γ⁻¹ ≻ 0 as Γ ≻ 0), positive definite in (v, θ_e)"))
+    return out + theorem1_results(values)
+
+
+theorem1 = Check("theorem1", parameters=P, checks=[_check], paper=PAPER,
+                 relevant=("M", "k1", "k2", "k3", "Lam", "Kd", "Gamma", "c1", "c2", "c3"),
+                 title="Theorem 1: V (2.6) along (1.3), (1.4), (2.7), (2.8): V̇ = −vᵀK_d v (2.9) exact; "
+                       "the signal argument (Lemmas 1, 3) not encoded, observed in zaremba1997.example")

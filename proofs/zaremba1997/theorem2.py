@@ -1,0 +1,322 @@
+"""Theorem 2 of paper 004: composite adaptation (3.2)–(3.4) and the Lyapunov function (3.1).
+
+    (3.1)  V = ½[vᵀMv + θ_eᵀΓ⁻¹θ_e + K_p V_δ + ‖η‖²],  V_δ = Σkᵢ(cᵢ − sᵢ)²,  η = Mv − ε − φᵀθ_e,
+    (3.2)  u = Y_cθ_r − K_p e − αv,  θ̇_r = −ΓY_cᵀv + λ_cΓφε,
+           ε̇ = −λ_cε − αv − K_p e + φᵀΓY_cᵀv − λ_cφᵀΓφε,  φ̇ = −λ_cφ + Y_cᵀ,
+    (3.3)  Y_cθ = Mω̇_c + ω_r × Mω,  ω̇_c = ω̇_r − λ_c v,
+    (3.4)  d(Γ⁻¹)/dt = (λ_c/2)(φφᵀ − λ(t)Γ⁻¹).
+
+The proof differentiates V piece by piece; each piece is derived here along the loop (states
+and ω_d(t) symbolic, λ any value, at the run's gains) and compared with its print:
+
+* T1 = d/dt ½vᵀMv against (3.7): exact.
+* T2 + T3 against (3.8): exact.
+* T4 = d/dt ½‖η‖² against the first line of (3.9), ηᵀ(−λ_cMv + Y_cθ_e − K_pe − αv − ε̇ − φ̇ᵀθ_e − φᵀθ̇_e):
+  **refuted**.  Along (1.3) Mv̇ = u − Y_cθ − λ_cMv − v × Mω: the print replaced ω × Mω by ω_r × Mω
+  in Mv̇ (allowed in T1 only, under vᵀ, since vᵀ(v × Mω) = 0).  Derived: η̇ = −λ_cη − v × Mω,
+  T4 = −λ_c‖η‖² − ηᵀ(v × Mω) (exact).
+* The second line of (3.9) prints +(λ_c/2)‖η‖²; it equals its first line (as printed) only with
+  −(λ_c/2)‖η‖² (exact both ways).
+* (3.10) from the printed pieces: the slack is the quadratic form
+  α‖v‖² − λ_cvᵀMz + (λ_c/4)‖z‖² + (λ_c/2)‖Mv − ε‖² in (v, Mv − ε, z = φᵀθ_e) (exact identity), positive
+  semidefinite iff α ≥ λ_cσ_M² (exact, Schur complement): the hypothesis α > λ_cσ_M² suffices.
+* (3.10) along the true loop: refuted at an exact rational state (θ_e = 0, e = 0, η = −(v × Mω)/λ_c,
+  a fast reference rotation): the dropped −ηᵀ(v × Mω) is cubic and beats the quadratic slack.
+* (3.12) on D (3.6), given (3.10): −V̇ − γV ≥ Σ (nonnegative coefficient)·(nonnegative quantity) with
+  the coefficients λ_c − γ/2, (λ_c − γ)/2, λ_cλ1/4 − γ/2, K_p(1 − γ/2) (the last from
+  Λeᵀe > V_δ on D); all ≥ 0 iff γ ≤ min{λ_c, λ_cλ1/2, 2}: the printed γ is the largest this
+  step allows (exact).
+"""
+
+from __future__ import annotations
+
+import sympy
+
+from lkverify import Check, Result, Status, cross, dot, t
+from lkverify.certify.matrices import matrix_positive_definite
+
+from .derive import compare, derivative, plain, poly_ring, to_ring
+from .equations import (PAPER, Kp, Lam, M, P, alpha, c1, c2, c3, composite_laws, k1, k2, k3, lam, lam1, lam_c,
+                        omega_e, s1, s2, s3, system1, theta, e)
+
+__all__ = ["theorem2", "Abstract", "abstract_loop", "reduce_det", "gamma_coefficients", "theorem2_results",
+           "bound_310_results", "GAMMA_PRINTED"]
+
+_DINV = sympy.Symbol("DINV", real=True)
+
+
+def _vec(name, n=3):
+    return sympy.Matrix(sympy.symbols(f"{name}1:{n + 1}", real=True))
+
+
+class Abstract:
+    """The loop of Theorem 2 one level up: e, ė, ω_d, ω̇_d as signals (symbols) with known derivatives.
+
+    The states ω, θ_r, ε, φ, Γ⁻¹ are symbols and their rates are :func:`~.equations.composite_laws`
+    (the same function the simulated System is built from) with Euler (1.3) for ω; e and ω_d
+    enter through their values and their derivatives ė, ω̇_d (d/dt e = ė along (1.4) is proved in
+    ``zaremba1997.parametrisation``), and V_δ through d/dt(½V_δ) = ω_eᵀe along (1.4), proved
+    below at the component level.  Γ = adj(Γ⁻¹)·DINV with det(Γ⁻¹)·DINV = 1 (:func:`reduce_det`).
+    """
+
+    def __init__(self, values):
+        sub = P.substitution({k: x for k, x in values.items() if not k.startswith("wd")})
+        self.sub = sub
+        self.M = M.xreplace(sub)
+        self.w, self.wd, self.wdd = _vec("w"), _vec("wd"), _vec("wdd")
+        self.e, self.ed = _vec("e"), _vec("ed")
+        self.th, self.ep = _vec("th"), _vec("ep")
+        self.ph = sympy.Matrix(3, 3, sympy.symbols("ph1:10", real=True))
+        g = sympy.symbols("g1:7", real=True)
+        self.g = g
+        self.Gm = sympy.Matrix([[g[0], g[1], g[2]], [g[1], g[3], g[4]], [g[2], g[4], g[5]]])
+        self.Vd = sympy.Symbol("Vdelta", nonnegative=True)
+        self.det = sympy.expand(self.Gm.det())
+        Gam = self.Gm.adjugate() * _DINV
+        law = composite_laws(self.w, self.wd, self.wdd, self.e, self.ed, self.th, self.ep, self.ph, self.Gm, Gam, lam)
+        self.law = {k: x.xreplace(sub) for k, x in law.items()}
+        self.Gam = Gam
+        self.theta = theta.xreplace(sub)
+        self.th_e = self.th - self.theta
+        self.v = self.law["v"]
+        self.eta = self.M * self.v - self.ep - self.ph.T * self.th_e
+        self.q = {name: sympy.sympify(x).xreplace(sub) for name, x in
+                  (("lam_c", lam_c), ("alpha", alpha), ("Kp", Kp), ("Lam", Lam), ("lam1", lam1))}
+        wdot = self.M.inv() * (-cross(self.w, self.M * self.w) + self.law["u"])             # (1.3)
+        self.raw_rates = [(self.w, wdot), (self.wd, self.wdd), (self.e, self.ed), (self.th, self.law["theta_r"]),
+                      (self.ep, self.law["eps"]), (self.ph, self.law["phi"]),
+                      (sympy.Matrix(g), sympy.Matrix([self.law["G"][i, j] for i, j in
+                                                      ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2))])),
+                      (sympy.Matrix([self.Vd]), sympy.Matrix([2 * dot(self.w - self.wd, self.e)]))]
+
+        pairs = [(x, r) for xs, rs in self.raw_rates for x, r in zip(xs, rs)]
+        self.R = poly_ring([r for _, r in pairs] + [self.eta[i] for i in range(3)], extra=[_DINV, lam] + [x for x, _ in pairs])
+        self.rates = [(self.R.gens[self.R.symbols.index(x)], to_ring(self.R, r)) for x, r in pairs]
+        self.det_r = to_ring(self.R, self.det)
+
+    def poly(self, expr):
+        """``expr`` in the ring of the abstract loop, reduced with det(Γ⁻¹)·DINV = 1."""
+        return reduce_det(to_ring(self.R, expr), self.det_r)
+
+    def derivative(self, V):
+        """V̇ by the chain rule over the abstract states (exact, reduced with det(Γ⁻¹)·DINV = 1)."""
+        Vr = to_ring(self.R, V)
+        total = self.R.zero
+        for x, r in self.rates:
+            d = Vr.diff(x)
+            if d:
+                total += d * r
+        return reduce_det(total, self.det_r)
+
+
+def abstract_loop(values):
+    return Abstract(values)
+
+
+def reduce_det(p, det):
+    """p = c0 + c1·DINV (a ring element, at most linear in DINV) → c0 + c1/det(Γ⁻¹) when det(Γ⁻¹) divides c1
+    (exact polynomial division; the remainder, if any, stays on DINV)."""
+    R = p.ring
+    k = R.symbols.index(_DINV)
+    dinv = R.gens[k]
+    c0, c1 = R.zero, R.zero
+    for monom, coeff in p.terms():
+        if monom[k] == 0:
+            c0 += R({monom: coeff})
+        elif monom[k] == 1:
+            c1 += R({monom[:k] + (0,) + monom[k + 1:]: coeff})
+        else:
+            raise ValueError("reduce_det: DINV enters V̇ at most linearly")
+    if not c1:
+        return p
+    q, r = c1.div(det)
+    return c0 + q + r * dinv
+
+
+def _printed(a):
+    """The printed right-hand sides of (3.7), (3.8) and the first line of (3.9)."""
+    lc, al, kp = a.q["lam_c"], a.q["alpha"], a.q["Kp"]
+    L, th_e, ph, v, e_ = a.law, a.th_e, a.ph, a.v, a.e
+    Yc = L["Y_c"]
+    T1 = [("−λ_cvᵀMv", -lc * dot(v, a.M * v)), ("−αvᵀv", -al * dot(v, v)), ("−K_pvᵀe", -kp * dot(v, e_)),
+          ("vᵀY_cθ_e", dot(v, Yc * th_e))]
+    T23 = [("θ_eᵀΓ⁻¹θ̇_e", (th_e.T * a.Gm * L["theta_r"])[0, 0]),
+           ("(λ_c/4)‖θ_e‖²_φφᵀ", lc / 4 * dot(ph.T * th_e, ph.T * th_e)),
+           ("−(λ_c/4)λ‖θ_e‖²_Γ⁻¹", -lc / 4 * lam * (th_e.T * a.Gm * th_e)[0, 0]),
+           ("K_pω_eᵀe", kp * dot(a.w - a.wd, e_))]
+    inner = (-lc * a.M * v + Yc * th_e - kp * e_ - al * v - L["eps"] - L["phi"].T * th_e - ph.T * L["theta_r"])
+    T4 = [("ηᵀ(−λ_cMv + Y_cθ_e − K_pe − αv − ε̇ − φ̇ᵀθ_e − φᵀθ̇_e)", dot(a.eta, inner))]
+    return {k: [(lab, a.poly(x)) for lab, x in val] for k, val in (("T1", T1), ("T23", T23), ("T4", T4))}
+
+
+def theorem2_results(values):
+    """(3.7), (3.8), (3.9) against the derivation; the derived T4; the second line of (3.9)."""
+    a = Abstract(values)
+    out = [_vdelta_lemma(a)]
+    V = {"T1": dot(a.v, a.M * a.v) / 2, "T23": (a.th_e.T * a.Gm * a.th_e)[0, 0] / 2 + a.q["Kp"] * a.Vd / 2,
+         "T4": dot(a.eta, a.eta) / 2}
+    derived = {k: a.derivative(x) for k, x in V.items()}
+    printed = _printed(a)
+    for key, label in (("T1", "(3.7): T1 = d/dt ½vᵀMv"), ("T23", "(3.8): T2 + T3"),
+                       ("T4", "(3.9) first line: T4 = d/dt ½‖η‖²")):
+        out.append(compare(label, printed[key], [(f"{key} derived", derived[key])], reference=label.split(":")[0],
+                           R=a.R))
+    lc, eta = a.q["lam_c"], a.eta
+    out.append(compare("T4 derived: −λ_c‖η‖² − ηᵀ(v × Mω)",
+                       [("−λ_c‖η‖²", -lc * dot(eta, eta)), ("−ηᵀ(v×Mω)", -dot(eta, cross(a.v, a.M * a.w)))],
+                       [("T4 derived", derived["T4"])], reference="T4 with the gyroscopic term kept", R=a.R))
+    gyro = dot(eta, cross(a.v, a.M * a.w))
+    out.append(compare("(3.9) first line − T4 derived = ηᵀ(v × Mω)", printed["T4"],
+                       [("T4 derived", derived["T4"]), ("ηᵀ(v×Mω)", a.poly(gyro))],
+                       reference="the first line of (3.9): the term −v × Mω of Mv̇ is missing", R=a.R))
+    mv_e, z = a.M * a.v - a.ep, a.ph.T * a.th_e
+    line2 = [("+(λ_c/2)‖η‖²", lc / 2 * dot(eta, eta)), ("−(λ_c/2)‖Mv − ε‖²", -lc / 2 * dot(mv_e, mv_e)),
+             ("λ_c(Mv − ε)ᵀφᵀθ_e", lc * dot(mv_e, z)), ("−(λ_c/2)‖θ_e‖²_φφᵀ", -lc / 2 * dot(z, z))]
+    out.append(compare("(3.9) second line = first line (as printed)", line2, printed["T4"],
+                       reference="the second line of (3.9)", R=a.R))
+    fixed = [("−(λ_c/2)‖η‖²", -lc / 2 * dot(eta, eta))] + line2[1:]
+    out.append(compare("(3.9) second line with −(λ_c/2)‖η‖² = first line", fixed, printed["T4"],
+                       reference="the second line of (3.9) with the sign of its first term changed", R=a.R))
+    return out, a, derived, printed
+
+
+def _vdelta_lemma(a):
+    """d/dt(½V_δ) = ω_eᵀe along (1.4), at the component level (the rate the abstract loop gives V_δ)."""
+    S, Cs, K = (s1(t), s2(t), s3(t)), (c1, c2, c3), (k1, k2, k3)
+    Vd = sum((k * dot(c - s, c - s) for k, s, c in zip(K, S, Cs)), sympy.Integer(0))
+    return compare("d/dt(½V_δ) = ω_eᵀe along (1.4)", [("ω_eᵀe", plain(dot(omega_e, e).xreplace(a.sub)))],
+                   [("d/dt ½Σkᵢ(cᵢ − sᵢ)²", derivative(Vd / 2, system1, a.sub))],
+                   reference="the rate of V_δ (the T3 of (3.8))")
+
+
+def GAMMA_PRINTED(values):
+    """γ of (3.12) as printed: min{λ_c, λ_cλ1/2, 2}."""
+    lc, l1 = sympy.sympify(values["lam_c"]), sympy.sympify(values["lam1"])
+    return sympy.Min(lc, lc * l1 / 2, 2)
+
+
+def _sigma_M(values):
+    return max(sympy.Matrix(values["M"]).eigenvals(multiple=True))
+
+
+def _rhs_310(a):
+    lc, kp, L = a.q["lam_c"], a.q["Kp"], a.q["Lam"]
+    return [("−λ_cvᵀMv", -lc * dot(a.v, a.M * a.v)), ("−(λ_c/2)‖η‖²", -lc / 2 * dot(a.eta, a.eta)),
+            ("−(λ_c/4)λ‖θ_e‖²_Γ⁻¹", -lc / 4 * lam * (a.th_e.T * a.Gm * a.th_e)[0, 0]),
+            ("−K_pΛeᵀe", -kp * L * dot(a.e, a.e))]
+
+
+def _witness_310(a, slack):
+    """An exact rational state where V̇ > (3.10): θ_e = 0, e = 0, Γ⁻¹ = I, η = −(v × Mω)/λ_c, ω_d = (0, 0, W)."""
+    lc = a.q["lam_c"]
+    R = a.R
+    for W in (10, 100, 1000, 10000):
+        vv = sympy.Matrix([sympy.Rational(1, 10), 0, 0])
+        wd_ = sympy.Matrix([0, 0, W])
+        w = wd_ + vv
+        ep = a.M * vv + cross(vv, a.M * w) / lc
+        point = {}
+        for vec, val in ((a.w, w), (a.wd, wd_), (a.e, [0, 0, 0]), (a.th, a.theta), (a.ep, ep)):
+            point.update({x: sympy.sympify(y) for x, y in zip(vec, val)})
+        point.update({x: (1 if i in (0, 3, 5) else 0) for i, x in enumerate(a.g)})
+        point[_DINV], point[lam] = 1, a.q["lam1"]
+        full = {s: point.get(s, 0) for s in R.symbols}
+        value = slack.evaluate([(R.gens[i], full[s]) for i, s in enumerate(R.symbols)])
+        if value < 0:
+            return W, value
+    return None, None
+
+
+def bound_310_results(a, derived, printed):
+    """(3.10): the slack of the printed pieces is a PSD form iff α ≥ λ_cσ_M²; along the true loop refuted."""
+    lc, al = a.q["lam_c"], a.q["alpha"]
+    R = a.R
+    rhs = sum((a.poly(x) for _, x in _rhs_310(a)), R.zero)
+    paper = sum((x for k in ("T1", "T23", "T4") for _, x in printed[k]), R.zero)
+    true = derived["T1"] + derived["T23"] + derived["T4"]
+    z = a.ph.T * a.th_e
+    mv_e = a.M * a.v - a.ep
+    Q = [("α‖v‖²", al * dot(a.v, a.v)), ("−λ_cvᵀMz", -lc * dot(a.v, a.M * z)), ("(λ_c/4)‖z‖²", lc / 4 * dot(z, z)),
+         ("(λ_c/2)‖Mv − ε‖²", lc / 2 * dot(mv_e, mv_e))]
+    out = [compare("(3.10) − (3.7)–(3.9) as printed = Q(v, Mv − ε, z = φᵀθ_e)", Q,
+                   [("(3.10) − Σ printed pieces", rhs - paper)], reference="the slack of (3.10)", R=R)]
+    vs, ws, zs = (sympy.Matrix(sympy.symbols(f"{n}1:4", real=True)) for n in ("qv", "qw", "qz"))
+    form = al * dot(vs, vs) - lc * dot(vs, a.M * zs) + lc / 4 * dot(zs, zs) + lc / 2 * dot(ws, ws)
+    H = sympy.hessian(form, list(vs) + list(ws) + list(zs)) / 2
+    res = matrix_positive_definite(H, name="Q", semidefinite=True)
+    out.append(Result("bound", "(3.10) from the printed pieces: Q ⪰ 0 (Young's step, μ = 2σ_M)", res.status, None,
+                      f"the 9 × 9 matrix of Q in (v, Mv − ε, z): {res.detail}; Schur complement: Q ⪰ 0 ⇔ "
+                      f"αI − λ_cM² ⪰ 0 ⇔ α ≥ λ_cσ_M² = {lc * _sigma_M_from(a) ** 2}"))
+    W, value = _witness_310(a, rhs - true)
+    out.append(Result("bound", "(3.10) along the true loop (1.3), (3.2)–(3.4)",
+                      Status.FAILED if value is not None else Status.UNDECIDED,
+                      None if value is None else {"W": W, "rhs_minus_Vdot": str(value)},
+                      "V̇ exceeds (3.10) by the dropped −ηᵀ(v × Mω): at θ_e = 0, e = 0, Γ⁻¹ = I, v = (1/10, 0, 0), "
+                      f"ω_d = (0, 0, {W}), ε = Mv + (v × Mω)/λ_c (η = −(v × Mω)/λ_c): (3.10) − V̇ = {value} < 0 (exact)"
+                      if value is not None else "no witness found on the ray tried"))
+    return out
+
+
+def _sigma_M_from(a):
+    return max(a.M.eigenvals(multiple=True))
+
+
+def gamma_coefficients(values, gamma=None):
+    """−(RHS of (3.10)) − γV on D, as coefficients of the nonnegative quantities (must all be ≥ 0).
+
+    With qv = vᵀMv, qη = ‖η‖², qθ = θ_eᵀΓ⁻¹θ_e, V = ½(qv + qθ + K_pV_δ + qη) (3.1), λ = λ1 + δ (δ ≥ 0,
+    property (b)) and, on D, eᵀe = V_δ/Λ + σ (σ > 0).  Returns (γ, {quantity: coefficient}, γ_max)
+    where γ_max is the largest γ for which every coefficient is ≥ 0.
+    """
+    g = sympy.Symbol("gamma")
+    qv, qeta, qth, Vd, sig, dl = sympy.symbols("qv qeta qtheta Vdelta sigma delta", nonnegative=True)
+    lc, kp, L, l1 = (sympy.sympify(values[k]) for k in ("lam_c", "Kp", "Lam", "lam1"))
+    rhs = -lc * qv - lc / 2 * qeta - lc / 4 * (l1 + dl) * qth - kp * L * (Vd / L + sig)   # (3.10) on D
+    V = (qv + qth + kp * Vd + qeta) / 2                                                 # (3.1)
+    E = sympy.expand(-(rhs + g * V))
+    quantities = {"vᵀMv": qv, "‖η‖²": qeta, "θ_eᵀΓ⁻¹θ_e": qth, "δ·θ_eᵀΓ⁻¹θ_e": dl * qth, "V_δ": Vd, "σ": sig}
+    poly = sympy.Poly(E, qv, qeta, qth, Vd, sig, dl)
+    coeffs = {name: poly.coeff_monomial(q) for name, q in quantities.items()}
+    bounds = [sympy.solve(sympy.Eq(c, 0), g)[0] for c in coeffs.values() if c.has(g)]
+    gmax = sympy.Min(*bounds)
+    gamma = GAMMA_PRINTED(values) if gamma is None else sympy.sympify(gamma)
+    return gamma, {k: c.subs(g, gamma) for k, c in coeffs.items()}, gmax
+
+
+def gamma_results(values, gamma=None):
+    gam, coeffs, gmax = gamma_coefficients(values, gamma)
+    bad = {k: c for k, c in coeffs.items() if c < 0}
+    out = [Result("bound", "(3.12): V̇ + γV ≤ 0 on D (3.6), given (3.10)", Status.FAILED if bad else Status.EXACT,
+                  {"gamma": str(gam), **{k: str(c) for k, c in coeffs.items()}},
+                  f"γ = {gam}: −(3.10) − γV = Σ coefficient·quantity with coefficients "
+                  + ", ".join(f"{k}: {c}" for k, c in coeffs.items())
+                  + (f"; negative: {', '.join(bad)}" if bad else " (all ≥ 0; λ ≥ λ1 and Λeᵀe > V_δ on D)"))]
+    printed = GAMMA_PRINTED(values)
+    out.append(Result("constant", "γ of (3.12) against the largest γ of this step", Status.EXACT if
+                      sympy.simplify(printed - gmax) == 0 else Status.FAILED, {"printed": str(printed), "largest": str(gmax)},
+                      f"every coefficient ≥ 0 iff γ ≤ {gmax}; printed min{{λ_c, λ_cλ1/2, 2}} = {printed}"))
+    return out
+
+
+def hypotheses2(values):
+    """λ_c > 0, K_p > 0, Λ > 0 and α > λ_cσ_M² (exact)."""
+    lc, al = sympy.sympify(values["lam_c"]), sympy.sympify(values["alpha"])
+    thr = lc * _sigma_M(values) ** 2
+    margin = al - thr
+    out = [Result("hypothesis", "α > λ_cσ_M² (3.2)", Status.EXACT if margin > 0 else Status.FAILED, str(margin),
+                  f"α = {al}, λ_cσ_M² = {thr} (σ_M = {_sigma_M(values)}): margin {margin}")]
+    for k, label in (("lam_c", "λ_c > 0"), ("Kp", "K_p > 0"), ("Lam", "Λ > 0"), ("lam1", "λ1 > 0")):
+        x = sympy.sympify(values[k])
+        out.append(Result("hypothesis", label, Status.EXACT if x > 0 else Status.FAILED, str(x), f"{k} = {x}"))
+    return out
+
+
+def _check(values):
+    out, a, derived, printed = theorem2_results(values)
+    return hypotheses2(values) + out + bound_310_results(a, derived, printed) + gamma_results(values)
+
+
+theorem2 = Check("theorem2", parameters=P, checks=[_check], paper=PAPER,
+                 relevant=("M", "k1", "k2", "k3", "Lam", "Kp", "alpha", "lam_c", "lam1"),
+                 title="Theorem 2: V (3.1) along (1.3), (1.4), (3.2)–(3.4) piece by piece against (3.7)–(3.9); "
+                       "(3.10) and γ of (3.12) as bound steps")
