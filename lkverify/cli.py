@@ -5,6 +5,7 @@
 ``lkverify check ITEM [--set NAME=VALUE]... [--json] [--budget S] [--load-limit S]``
 ``lkverify simulate ITEM [--set NAME=VALUE]... [--history STATE=VALUE]... [--t-end T] [--plot FILE.png] [--envelope] [--convention NAME] [--distance {combined,per-vector}] [--json] [--budget S]``
 ``lkverify constants ITEM [--set NAME=VALUE]... [--goal GOAL] [--plot FILE.png] [--json] [--budget S]``
+``lkverify linear --set A=[[…]] [--set Ad=[[…]]] [--set D=[[…]]] [--orders 0,1,2] [--h-max H] [--h H] [--plot F.png] [--json]``
 
 Exit codes: 0 every result holds (for the bare report: the report was produced),
 1 something failed or is undecided (a budget ran out), 2 bad input (one line on
@@ -145,7 +146,26 @@ def _build_parser() -> argparse.ArgumentParser:
     _add_load_limit(k)
     k.add_argument("--goal", default=None, help="which trade-off to optimise, for items that offer several "
                    "(aleksandrov2023.theorem3: paper = match d1, d2, d3 and maximise δ̃; region = maximise δ̃)")
+    _add_linear(sub)
     return p
+
+
+def _add_linear(sub) -> None:
+    """``lkverify linear``: a user's linear delay system (issue 13)."""
+    lin = sub.add_parser("linear", help="a linear delay system x' = A x + Ad x(t-h) + int_{t-h}^t D x: spectral "
+                         "abscissa, stability intervals, delays certified by LK LMIs (exact re-verification)")
+    lin.add_argument("--set", dest="sets", action="append", default=[], metavar="NAME=VALUE",
+                     help="A, Ad, D (constant kernel) or D0, D1, … (kernel sum D_j u^j): matrices such as "
+                          "A=[[-2,0],[0,-0.9]], read exactly")
+    lin.add_argument("--orders", default="0,1,2,3,4", metavar="N,N,…",
+                     help="orders of the LMI hierarchy: 0 Jensen, 1 Wirtinger, ≥ 2 Bessel–Legendre (default 0,1,2,3,4)")
+    lin.add_argument("--h-max", type=float, default=20.0, metavar="H",
+                     help="the largest delay of the stability analysis (default 20)")
+    lin.add_argument("--h", default=None, metavar="H",
+                     help="one delay: report the spectrum there and solve/verify each order's LMI at it (no bisection)")
+    lin.add_argument("--plot", metavar="FILE.png", help="write the spectrum and the spectral abscissa over h")
+    lin.add_argument("--json", action="store_true", help=JSON_HELP)
+    _add_quiet(lin)
 
 
 #: progress lines start once a job has run this long (bad input is refused before: never preceded)
@@ -253,7 +273,30 @@ def _dispatch(args) -> int:
         return _simulate(args)
     if args.command == "constants":
         return _constants(args)
+    if args.command == "linear":
+        return _linear(args)
     return 0  # pragma: no cover
+
+
+def _linear(args) -> int:
+    """``lkverify linear``: input checked first (values, orders, delays, --plot), then the job."""
+    from .linear.run import linear_report
+
+    values = _set_values(args.sets)
+    try:
+        orders = tuple(int(x) for x in args.orders.split(",") if x.strip())
+    except ValueError:
+        raise InputError(f"--orders: expected integers N ≥ 0 separated by commas, got {args.orders!r}; "
+                         "e.g. --orders 0,1,2") from None
+    if not orders or any(o < 0 or o > 12 for o in orders):
+        raise InputError(f"--orders: expected integers 0 ≤ N ≤ 12, got {args.orders!r}; e.g. --orders 0,1,2")
+    if not (math.isfinite(args.h_max) and args.h_max > 0):
+        raise InputError(f"--h-max: expected a positive finite delay, got {args.h_max}")
+    if args.plot:
+        check_output_path(args.plot)
+    report = linear_report(values, orders=orders, h_max=args.h_max, h=args.h, plot=args.plot,
+                           say=_progress(not args.quiet))
+    return _emit([report], json_out=args.json)
 
 
 def _set_values(sets) -> dict:

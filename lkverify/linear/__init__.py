@@ -12,7 +12,9 @@
     the LK LMI hierarchy (Jensen, Wirtinger, Bessel–Legendre of order N; Seuret & Gouaisbaut 2015),
     solved with cvxpy + Clarabel, rounded to rationals and re-verified exactly;
 :mod:`.margin`
-    the largest (and smallest) delay of a stability interval with a verified certificate, by bisection.
+    the largest (and smallest) delay of a stability interval with a verified certificate, by bisection;
+:mod:`.run`, :mod:`.figures`
+    the job of ``lkverify linear`` (one :class:`lkverify.report.Report`) and its figure.
 """
 
 from .crossing import Crossing, StabilityIntervals, crossing_frequencies, stability_intervals
@@ -20,11 +22,13 @@ from .hierarchy import (LmiCertificate, LmiResult, certify_delay, check_certific
                         solve_certificate)
 from .margin import CertifiedInterval, certified_interval
 from .model import LinearDelaySystem, parse_delay
+from .run import linear_report, system_from_values
+from .figures import plot_linear
 from .spectrum import Spectrum, generator_matrix, rightmost_roots, spectral_abscissa
 
 __all__ = [
     "CertifiedInterval", "LmiCertificate", "LmiResult", "certified_interval", "certify_delay", "check_certificate",
-    "method_name", "quick_check", "solve_certificate",
+    "method_name", "quick_check", "solve_certificate", "linear_report", "plot_linear", "system_from_values",
     "Crossing", "LinearDelaySystem", "Spectrum", "StabilityIntervals", "crossing_frequencies", "generator_matrix",
     "parse_delay", "rightmost_roots", "spectral_abscissa", "stability_intervals",
 ]

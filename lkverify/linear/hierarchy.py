@@ -41,6 +41,7 @@ from __future__ import annotations
 
 import dataclasses
 import time
+import warnings
 from fractions import Fraction
 
 import numpy as np
@@ -232,7 +233,9 @@ class _Sdp:
         for k, par in enumerate(self.powers):
             par.value = h ** k
         self.hinv.value = 1 / h
-        status = solve_sdp(self.problem)
+        with warnings.catch_warnings():  # "may be inaccurate": the status is reported, never trusted
+            warnings.simplefilter("ignore", UserWarning)
+            status = solve_sdp(self.problem)
         t = self.t.value
         if status not in (cp.OPTIMAL, cp.OPTIMAL_INACCURATE) or t is None or not t > 0:
             return None, status, None if t is None else float(t)

@@ -1,0 +1,175 @@
+"""The job behind ``lkverify linear``: spectrum, stability intervals, certified delays per order.
+
+Examples
+--------
+>>> rep = linear_report({"A": [[-2, 0], [0, "-0.9"]], "Ad": [[-1, 0], [-1, -1]]}, orders=(0,), h_max=10)
+>>> [r.status.value for r in rep.results]
+['estimated', 'estimated', 'exact']
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import sympy
+
+from ..errors import InputError
+from ..report.results import Report, Result
+from ..status import Status
+from .crossing import stability_intervals
+from .hierarchy import certify_delay, method_name
+from .margin import certified_interval
+from .model import LinearDelaySystem, parse_delay
+from .spectrum import rightmost_roots
+
+__all__ = ["LINEAR_NAMES", "linear_report", "system_from_values"]
+
+#: the names ``--set`` accepts: A, Ad, D (constant kernel) or D0, D1, … (kernel Σ D_j u^j)
+LINEAR_NAMES = ("A", "Ad", "D", "D0", "D1", "D2", "D3", "D4", "D5")
+#: the default orders: Jensen, Wirtinger, Bessel–Legendre 2, 3, 4
+DEFAULT_ORDERS = (0, 1, 2, 3, 4)
+
+
+def system_from_values(values: dict) -> LinearDelaySystem:
+    """A :class:`LinearDelaySystem` from ``--set`` values (A required; Ad; D or D0, D1, …).
+
+    >>> system_from_values({"A": [[-1]], "D": [[-1]]}).has_distributed
+    True
+    >>> system_from_values({"Ad": [[1]]})
+    Traceback (most recent call last):
+    ...
+    lkverify.errors.InputError: A: expected the matrix A of ẋ = A x + A_d x(t−h) + ∫ D x (e.g. A=[[-2,0],[0,-1]]), got no A
+    """
+    unknown = sorted(set(values) - set(LINEAR_NAMES))
+    if unknown:
+        raise InputError(f"{', '.join(unknown)}: unknown name(s); expected some of {', '.join(LINEAR_NAMES)} "
+                         "(A, Ad, and D for a constant kernel or D0, D1, … for K(u) = Σ D_j u^j)", topic="parameters",
+                         example="A=[[-2,0],[0,-1]]")
+    if "A" not in values:
+        raise InputError("A: expected the matrix A of ẋ = A x + A_d x(t−h) + ∫ D x (e.g. A=[[-2,0],[0,-1]]), "
+                         "got no A", topic="parameters", example="A=[[-2,0],[0,-1]]")
+    if "D" in values and "D0" in values:
+        raise InputError("D and D0: expected one of them (both name the constant part of the kernel)",
+                         topic="parameters")
+    kernel = []
+    degrees = [int(k[1:]) for k in values if k.startswith("D") and k != "D"]
+    top = max(degrees, default=0 if "D" in values else -1)
+    for j in range(top + 1):
+        key = "D" if j == 0 and "D" in values else f"D{j}"
+        kernel.append(values.get(key))
+    n = _size(values["A"])
+    kernel = [K if K is not None else [[0] * n for _ in range(n)] for K in kernel]
+    return LinearDelaySystem(_matrix(values["A"], "A"), Ad=_matrix(values.get("Ad"), "Ad"),
+                             kernel=[_matrix(K, "D") for K in kernel], name="user system")
+
+
+def _matrix(v, name):
+    """A scalar given for a 1×1 system becomes [[v]]; matrices pass through (validated by the model)."""
+    if v is None:
+        return None
+    if isinstance(v, sympy.MatrixBase):
+        return v
+    if isinstance(v, (sympy.Basic, int, float)):
+        return [[v]]
+    return v
+
+
+def _size(v) -> int:
+    if isinstance(v, sympy.MatrixBase):
+        return v.rows
+    if isinstance(v, (list, tuple)):
+        return len(v)
+    return 1
+
+
+def linear_report(values: dict, *, orders=DEFAULT_ORDERS, h_max: float = 20.0, h=None, plot=None,
+                  say=None) -> Report:
+    """Spectral abscissa, stability intervals and, per order, the certified delays; one :class:`Report`.
+
+    Parameters
+    ----------
+    values : dict
+        ``A``, ``Ad``, ``D`` / ``D0``, ``D1``, … (matrices, exact).
+    orders : sequence of int
+        Orders of the LMI hierarchy (0 Jensen, 1 Wirtinger, ≥ 2 Bessel–Legendre).
+    h_max : float
+        The largest delay of the stability analysis.
+    h : number, optional
+        A delay at which the spectrum is reported and each order's LMI is solved and verified.
+    plot : str or Path, optional
+        Write the figure (spectrum at h or at the margin, abscissa over h) there.
+    say : callable, optional
+        Progress messages.
+
+    Returns
+    -------
+    Report
+        Results of kind ``linear``: the spectral results ``estimated``; each order's certified
+        delays ``exact`` (rational data) or ``certified`` when verified, ``undecided`` otherwise.
+
+    Examples
+    --------
+    >>> rep = linear_report({"A": [[-1]], "Ad": [["0.5"]]}, orders=(1,), h="2", h_max=5)
+    >>> rep.results[-1].status.value, rep.exit_code
+    ('exact', 0)
+    """
+    say = say or (lambda *a, **k: None)
+    if not (isinstance(h_max, (int, float)) and math.isfinite(h_max) and h_max > 0):
+        raise InputError(f"h-max: expected a positive finite delay, got {h_max}")
+    hq = None if h is None else parse_delay(h)
+    system = system_from_values(values)
+    results = []
+    if hq is not None:
+        sp = rightmost_roots(system, float(hq))
+        results.append(Result("linear", f"spectral abscissa at h = {hq}", Status.ESTIMATED, sp.abscissa,
+                              f"rightmost root {sp.roots[0]:.6g}; {sp.detail}"))
+    t0 = time.perf_counter()
+    iv = stability_intervals(system, h_max=h_max)
+    t_spec = time.perf_counter() - t0
+    shown = ", ".join(f"({lo:.7g}, {hi:.7g})" if lo > 0 else f"[0, {hi:.7g})" for lo, hi in iv.intervals) or "none"
+    results.append(Result("linear", "stability intervals (spectral)", Status.ESTIMATED,
+                          {"intervals": [list(x) for x in iv.intervals], "method": iv.method},
+                          f"stable for h in {shown} within [0, {h_max:g}]; {iv.detail}; {t_spec:.2f} s"))
+    if iv.margin is not None:
+        results.append(Result("linear", "delay margin (spectral)", Status.ESTIMATED, iv.margin,
+                              f"the first crossing delay, from the crossing analysis ({iv.method}); "
+                              f"{len(iv.crossings)} crossing(s) in [0, {h_max:g}]"))
+    target = iv.intervals[0] if iv.intervals else None
+    for order in orders:
+        name = method_name(order)
+        say(f"LMI {name}")
+        if hq is not None:
+            res = certify_delay(system, hq, order=order)
+            results.append(Result("linear", f"{name} at h = {hq}", res.status, float(hq),
+                                  f"{res.detail} (solve {res.solve_seconds:.2f} s, check {res.check_seconds:.2f} s)"))
+            continue
+        if target is None:
+            results.append(Result("linear", f"certified delays ({name})", Status.UNDECIDED, None,
+                                  f"no stability interval in [0, {h_max:g}]: nothing to certify"))
+            continue
+        m = certified_interval(system, target, order=order)
+        value = {"value": m.upper, "lower": m.lower, "upper": m.upper, "solves": m.solves, "seconds": m.seconds}
+        results.append(Result("linear", f"certified delays ({name})", m.status, value, m.detail))
+    verdict = _verdict(results, iv)
+    details = ()
+    if plot is not None:
+        from .figures import plot_linear
+        certified = [(r.name[len("certified delays ("):-1], r.value) for r in results
+                     if r.name.startswith("certified") and r.status.is_proof]
+        path = plot_linear(system, plot, intervals=iv, h=None if hq is None else float(hq), certified=certified)
+        details = (f"figure: {path}",)
+    return Report("linear", dict(values), tuple(results), verdict, text_details=details)
+
+
+def _verdict(results, iv) -> str:
+    certified = [r for r in results if r.name.startswith("certified") and r.status.is_proof]
+    spectral = (f"delay margin {iv.margin:.7g} (spectral, estimated)" if iv.margin is not None else
+                ("stability intervals " + ", ".join(f"({a:.7g}, {b:.7g})" for a, b in iv.intervals)
+                 if iv.intervals else "no stability interval found"))
+    if not certified:
+        return spectral + "; no delay certified by an LMI"
+    best = max(certified, key=lambda r: r.value["upper"])
+    lo = best.value["lower"]
+    where = f"[{lo:.7g}, {best.value['upper']:.7g}] (each end)" if lo is not None else f"h = {best.value['upper']:.7g}"
+    return f"{spectral}; certified at {where} by {best.name[len('certified delays ('):-1]} ({best.status.value})"
