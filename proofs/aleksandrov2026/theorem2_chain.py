@@ -38,19 +38,20 @@ only picks them; every step is proved at those exact values).
 
 from __future__ import annotations
 
+import functools
 import math
 
 import sympy
 
-from lkverify import t, xi, zeta
+from lkverify import Status, t, xi, zeta
 from lkverify.certify.steps.chain import TermBound, TermwiseBound, collect_monomials
 from lkverify.certify.steps.measures import Region, sup_norm
 from lkverify.certify.steps.memory import (U, Evaluated, KernelBound, MemoryHolder, MemoryKrasovskii, MemoryWeight,
                                            evaluate_constant_integrals, kernel_integral, memory_integral_of,
                                            memory_measure)
 from lkverify.certify.steps.rewrites import LowerBound, OnRegion, PowerSplit, YoungEach
-from lkverify.certify.steps.rules import (CauchySchwarz, Equal, Homogeneous, Rayleigh, crossed, measured, scaled,
-                                          summed, unit)
+from lkverify.certify.steps.rules import (Application, CauchySchwarz, Condition, Equal, Homogeneous, Rayleigh, crossed, measured, scaled,
+                                          Rule, summed, unit)
 from lkverify import tail_integral
 from lkverify.declare.parameters import apply_substitution
 
@@ -118,7 +119,12 @@ def _kbar(v):
 
 def _sigma(v):
     """σ of Assumption 1 at the run's kernel (:func:`.assumption1.decide_assumption1`); 0 when it fails."""
-    res = decide_assumption1(sympy.sympify(v["g"]).subs(sympy.Symbol("zeta"), zeta), budget=10)
+    return _sigma_of(sympy.sympify(v["g"]).subs(sympy.Symbol("zeta"), zeta))
+
+
+@functools.lru_cache(maxsize=32)
+def _sigma_of(g_expr):
+    res = decide_assumption1(g_expr, budget=10)
     return res.sigma if res.holds and res.sigma is not None else sympy.S.Zero
 
 
@@ -194,6 +200,28 @@ _J_THEN = (MemoryHolder("S1", "J1"), MemoryHolder("S2", "J2"), YoungEach(tuple((
            OnRegion("J1", 1), OnRegion("J2", 1))
 
 
+class _UnlessZero(Rule):
+    """``rule`` then the rewrites ``then``, unless the term is 0 at the values (β = 0: bound 0, exact)."""
+
+    def __init__(self, rule, then):
+        self.rule, self.then = rule, tuple(then)
+        self.name = rule.name
+
+    def apply(self, term, direction, ctx):
+        if sympy.expand(ctx.at(term)) == 0:
+            return Application("the term vanishes at these values", sympy.S.Zero,
+                               (Condition("the term is 0 (β = 0)", Status.EXACT),))
+        apps = [self.rule.apply(term, direction, ctx)]
+        for rewrite in self.then:
+            if apps[-1].bound is None:
+                break
+            apps.append(rewrite.rewrite(apps[-1].bound, ctx, direction) if getattr(rewrite, "directional", False)
+                        else rewrite.rewrite(apps[-1].bound, ctx))
+        return Application(" then ".join(a.rule for a in apps), apps[-1].bound,
+                           tuple(c for a in apps for c in a.conditions),
+                           tuple(c for a in apps for c in a.constants))
+
+
 def _vdot_bounds():
     a = (alpha1, alpha2)
     ten = LowerBound("l", sympy.sqrt(epsilon * (alpha1**2 * e1**2 + alpha2**2 * e2**2)), lemma10,
@@ -202,11 +230,11 @@ def _vdot_bounds():
         TermBound("−γωᵀDω", -gamma * c6 * w**2, Rayleigh(omega(t), D, factor=-gamma, eigenvalue=eig_of("D", "min"),
                                                        norm_squared=w**2)),
         TermBound("−γβf^ν ωᵀL", gamma * abs(beta) * c7 * (eta * w**2 + delta ** (2 * nu) * (e1**Pw + e2**Pw) / (2 * eta)),
-                  CauchySchwarz(omega(t), L(t), (measured(w_), L_norm_tree(e1_, e2_)),
-                                factor=-gamma * beta * f_of(e1, e2)),
-                  then=(Homogeneous(("e1", "e2"), e1**K + e2**K, "c7", factor=gamma * abs(beta) * w),
-                        YoungEach(((w, e1**K, 2, 2, eta), (w, e2**K, 2, 2, eta))), OnRegion("e1", Pw),
-                        OnRegion("e2", Pw))),
+                  _UnlessZero(CauchySchwarz(omega(t), L(t), (measured(w_), L_norm_tree(e1_, e2_)),
+                                            factor=-gamma * beta * f_of(e1, e2)),
+                              (Homogeneous(("e1", "e2"), e1**K + e2**K, "c7", factor=gamma * abs(beta) * w),
+                               YoungEach(((w, e1**K, 2, 2, eta), (w, e2**K, 2, 2, eta))), OnRegion("e1", Pw),
+                               OnRegion("e2", Pw)))),
         TermBound("−γωᵀ∫f^ν(ξ)G(t−ξ)L(ξ)dξ", _young_J(gamma * c9 * _c12),
                   CauchySchwarz(omega(t), J, (measured(w_), _integral_torque), factor=-gamma), then=_J_THEN),
         # the εc11 step: Assumption 2 (Ξ = (β + ∫g)I, λ_min(D⁻¹Ξ) = (β + ∫g)λ_min(D⁻¹)), (10), (ΣA)^ν ≥ A_i^ν
@@ -286,12 +314,12 @@ def _largest_delta(fns, hi=0.5):
             return all(want * fn(d) > 0 for want, fn in fns)
         except (ValueError, OverflowError, ZeroDivisionError):
             return False
-    lo_, hi_ = -60.0, math.log(hi)
+    lo_, hi_ = -400.0, math.log(hi)
     if ok(hi):
         return hi
     if not ok(math.exp(lo_)):
         return 0.0
-    for _ in range(60):
+    for _ in range(80):
         mid = (lo_ + hi_) / 2
         lo_, hi_ = (mid, hi_) if ok(math.exp(mid)) else (lo_, mid)
     return math.exp(lo_)
@@ -314,6 +342,19 @@ def find_choices(values) -> dict:
     >>> sorted(ch), 0 < float(sympy.Rational(ch["delta"])) < 0.5
     (['delta', 'epsilon', 'eta', 'eta_K', 'eta_w', 'gamma', 'mu'], True)
     """
+    try:
+        return _recipe(values)
+    except (ValueError, TypeError, ZeroDivisionError, OverflowError):
+        # gains outside the theorem's hypotheses (Ξ ≤ 0, a kernel failing Assumption 1): the recipe has no
+        # positive numbers; the defaults' choices are checked instead, and the chain says which step fails
+        return dict(_FALLBACK)
+
+
+_FALLBACK = {"gamma": "123", "mu": "19/125", "eta_w": "57/2000", "eta_K": "25/2", "eta": "277/1000",
+             "epsilon": "1/2", "delta": "1/1000000"}
+
+
+def _recipe(values) -> dict:
     f = lambda x: float(sympy.N(x, 30))  # noqa: E731
     v = values
     nc = {str(k): f(x) for k, x in steps[0].named_constants(v).items()}
@@ -324,6 +365,8 @@ def find_choices(values) -> dict:
     dn, thmax, thmin, c6_ = nc["Dinv_norm"], nc["theta_max"], nc["theta_min"], nc["c6"]
     gb, kb, sg, b = nc["gbar"], nc["Kbar"], nc["sigma"], abs(f(v["beta"]))
     c12 = gb ** (1 / P_)
+    if not all(math.isfinite(x) and x > 0 for x in (gb, kb, sg, nc["Xi_c"])):
+        raise ValueError("outside the hypotheses")
     eta_w_ = _rational_below(1 / (2 * dn * thmax))
     E = min(float(eps) * nc["Xi_c"] * nc["lambda_Dinv"] * (a / 2) ** nu_ * a**2 for a in (a1, a2))
     mu_ = _rational_below(E / (4 * gb))

@@ -423,6 +423,8 @@ class TermwiseBound:
         detail = next((a.detail for a in apps if not a.status.is_proof), None)
         if status.is_proof and bound is not None:
             rest = sympy.expand(stated - bound if direction == "upper" else bound - stated)
+            if not (rest == 0 or nonnegative(rest)):  # 6875^(1/5) and 5^(4/5)·11^(1/5): one number, two forms
+                rest = sympy.expand(_prime_powers(rest))
             if not (rest == 0 or nonnegative(rest)):
                 status = Status.UNDECIDED
                 detail = (f"the stated bound is not the rule's: the rule gives {bound}, the step states {stated} "
@@ -650,6 +652,29 @@ def _positive_rate_point(model, grid: int = 41):
     if sign.sign is None or sign.sign < 0 or all(x == 0 for x in at.values()):
         return None
     return at, value
+
+
+def _prime_powers(expr):
+    """``expr`` with every power q^e of a positive rational q (e not an integer) written over q's primes.
+
+    SymPy keeps 6875^(1/5) and 5^(4/5)·11^(1/5) apart; over the primes both are one canonical
+    product, so an exact difference of such terms expands to 0 (bases above 10^30 are left).
+
+    >>> fifth = sympy.Rational(1, 5)
+    >>> _prime_powers(sympy.Integer(6875) ** fifth) - 5 ** (4 * fifth) * 11 ** fifth
+    0
+    """
+    def split(p):
+        b, e = p.base, p.exp
+        num = sympy.Mul(*[sympy.Pow(q, k * e) for q, k in sympy.factorint(b.p).items()])
+        den = sympy.Mul(*[sympy.Pow(q, k * e) for q, k in sympy.factorint(b.q).items()])
+        return num / den
+
+    def wanted(x):
+        return (isinstance(x, sympy.Pow) and x.base.is_Rational and x.base > 0 and x.exp.is_Rational
+                and not x.exp.is_Integer and max(x.base.p, x.base.q) < 10**30)
+
+    return sympy.sympify(expr).replace(wanted, split)
 
 
 def collect_monomials(expr, symbols) -> dict:

@@ -77,6 +77,15 @@ def _lambda(kernel):
     raise InputError(f"kernel: expected a callable u ↦ κ(u) or a sympy Lambda, got {type(kernel).__name__}")
 
 
+_DONE: dict = {}  # a constant integral → its value: SymPy's integrate is slow and its result exact, so once per process
+
+
+def _doit(node):
+    if node not in _DONE:
+        _DONE[node] = node.doit()
+    return _DONE[node]
+
+
 def evaluate_constant_integrals(expr):
     """``expr`` with every integral free of t, ξ and states evaluated exactly (``doit``), innermost first.
 
@@ -88,7 +97,7 @@ def evaluate_constant_integrals(expr):
     for _ in range(8):  # innermost first; an integral SymPy leaves unevaluated stays
         inner = {a for a in e.atoms(sympy.Integral) if not (a.free_symbols & {t, xi}) and not a.atoms(AppliedUndef)
                  and not a.function.has(sympy.Integral)}
-        done = {a: a.doit() for a in inner}
+        done = {a: _doit(a) for a in inner}
         done = {a: v for a, v in done.items() if v != a and not v.has(a)}
         if not done:
             return e

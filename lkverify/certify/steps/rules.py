@@ -146,8 +146,11 @@ class Context:
 
     def pointwise(self, expr):
         """``expr`` with the pointwise-norm symbols of the window measures replaced by their definitions."""
-        rep = {m.pointwise_symbol: self.at(m.pointwise()) for m in self.measures.values() if m.kind != "norm"}
-        return sympy.sympify(expr).xreplace(rep)
+        expr = sympy.sympify(expr)
+        present = expr.free_symbols  # only the symbols that occur: each substitution costs
+        rep = {m.pointwise_symbol: self.at(m.pointwise()) for m in self.measures.values()
+               if m.kind != "norm" and m.pointwise_symbol in present}
+        return expr.xreplace(rep)
 
     def zero(self, expr) -> bool:
         """Is ``expr`` exactly 0 on the state manifold (unit vectors, frames) for t ≥ 0?
@@ -167,7 +170,9 @@ class Context:
             return True
         from ...symbolic.canonical import Canonicalizer
 
-        canon = Canonicalizer(self.system.constraint_polynomials)
+        canon = self.__dict__.get("_canonicalizer")  # one per context: its Gröbner bases are reused
+        if canon is None:
+            canon = self._canonicalizer = Canonicalizer(self.system.constraint_polynomials)
         return canon.normal_forms([e]).polys[0] == 0
 
 
