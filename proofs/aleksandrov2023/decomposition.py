@@ -42,6 +42,7 @@ The decisions (each returns a :class:`~lkverify.certify.conditions.ConditionResu
 from __future__ import annotations
 
 import dataclasses
+import functools
 from fractions import Fraction
 
 import numpy as np
@@ -61,7 +62,7 @@ from .equations import PAPER
 __all__ = ["PAPER", "P2", "A", "B", "Q", "D", "MU", "NU1", "NU2", "tau", "q", "p", "system1", "X", "Y", "x", "y",
            "q_of_xy", "system_P4",
            "printed_P4", "decide_7", "decide_8", "decide_order", "escaping_ray", "Decided", "instance_matrices",
-           "COEFFICIENTS"]
+           "COEFFICIENTS", "PRINTED_CROSS_TERMS", "cross_term_excess", "derived_order_condition"]
 
 #: the parameters of section 4 (a registry of their own: A and B are not those of section 5)
 P2 = Parameters()
@@ -354,3 +355,75 @@ def decide_order(nu1, nu2, mu) -> ConditionResult:
         return ConditionResult("1 < (ν2+μ−1)/ν1 < μ", Status.EXACT, margin=Margin(min(lo, hi), min(lo, hi)),
                                detail=f"holds: {text}")
     return ConditionResult("1 < (ν2+μ−1)/ν1 < μ", Status.FAILED, witness=(nu1, nu2, mu), detail=f"fails: {text}")
+
+
+# -- the order condition derived from the printed estimate -------------------------------------------------
+
+_nu1, _nu2, _mu = sympy.symbols("nu1 nu2 mu", positive=True)
+#: the positive cross terms of the printed V̇ estimate (before Young's inequality), as exponents of
+#: ‖x(t)‖, ‖y(t)‖ and of the window integrals ∫‖x(ξ)‖^·, ∫‖y(ξ)‖^· (products of integrals add), and whether
+#: the coefficient may be taken small (ε1, ε2: the term may be of the same order as −m24‖y‖^{ν2+μ−1})
+PRINTED_CROSS_TERMS = (
+    ("c1‖x‖^{ν1−1}‖x‖^μ", (_nu1 - 1 + _mu, 0, 0, 0), False),
+    ("c1‖x‖^{ν1−1}‖y‖^μ", (_nu1 - 1, _mu, 0, 0), False),
+    ("c2‖x‖^{ν1−1}∫‖x‖^μ", (_nu1 - 1, 0, _mu, 0), False),
+    ("c2‖x‖^{ν1−1}∫‖y‖^μ", (_nu1 - 1, 0, 0, _mu), False),
+    ("c3ε1‖y‖^{ν2−1}‖y‖^μ", (0, _nu2 - 1 + _mu, 0, 0), True),
+    ("c3h1‖y‖^{ν2−1}‖x‖^μ", (_mu, _nu2 - 1, 0, 0), False),
+    ("τc10‖y‖^{ν2−2}∫‖y‖^μ‖x‖^μ", (_mu, _nu2 - 2, 0, _mu), False),
+    ("τc10‖y‖^{ν2−2}∫‖y‖^μ‖y‖^μ", (0, _nu2 - 2 + _mu, 0, _mu), False),
+    ("τc10‖y‖^{ν2−2}∫‖y‖^μ∫‖x‖^μ", (0, _nu2 - 2, _mu, _mu), False),
+    ("τc10‖y‖^{ν2−2}(∫‖y‖^μ)²", (0, _nu2 - 2, 0, 2 * _mu), False),
+    ("ε2c4‖y‖^{ν2−1}∫‖y‖^μ", (0, _nu2 - 1, 0, _mu), True),
+    ("h2c4‖y‖^{ν2−1}∫‖x‖^μ", (0, _nu2 - 1, _mu, 0), False),
+)
+
+
+@functools.lru_cache(maxsize=None)
+def cross_term_excess(exponents) -> sympy.Expr:
+    """w − 1 of a cross term, w its order relative to the negative terms, factored exactly.
+
+    The negative terms of the estimate are −m14‖x‖^{ν1}, −m24‖y‖^{ν2+μ−1}, −β1∫‖x‖^{ν1}, −β2∫‖y‖^{ν2+μ−1};
+    giving ‖x‖ (and ∫‖x‖^p) the weight 1/ν1 (p/ν1) and ‖y‖ (∫‖y‖^p) the weight 1/(ν2+μ−1) (p/(ν2+μ−1)),
+    a product is of higher order near 0 — Young's inequality bounds it by ε times the negative terms
+    on a small region (Hölder on the window for the integrals) — exactly when its weight w > 1.
+    """
+    ex, ey, ix, iy = exponents
+    N = _nu2 + _mu - 1
+    return sympy.factor(sympy.together((ex + ix) / _nu1 + (ey + iy) / N - 1))
+
+
+def derived_order_condition(nu1, nu2, mu, *, printed=None) -> ConditionResult:
+    """The order condition derived from the printed estimate's cross terms, against the printed one.
+
+    ``exact`` when every cross term is of higher order (or of the same order with a small coefficient)
+    at these orders *and* the printed 1 < (ν2+μ−1)/ν1 < μ agrees; ``failed`` names the terms that are
+    not dominated, or says that the printed condition and the derivation disagree at these orders.
+    ``printed(nu1, nu2, mu) → bool`` replaces the paper's condition (to state a mutated print).
+    """
+    values = {_nu1: sympy.Rational(nu1), _nu2: sympy.Rational(nu2), _mu: sympy.Rational(mu)}
+    rows, bad, least = [], [], None
+    for label, exps, small in PRINTED_CROSS_TERMS:
+        excess = cross_term_excess(exps)
+        v = excess.subs(values)
+        ok = v >= 0 if small else v > 0
+        rows.append(f"{label}: w − 1 = {excess} = {v}")
+        if not ok:
+            bad.append(f"{label} (w − 1 = {v})")
+        if not small:
+            least = v if least is None else min(least, v)
+    printed = (decide_order(nu1, nu2, mu).status is Status.EXACT if printed is None
+               else bool(printed(values[_nu1], values[_nu2], values[_mu])))
+    derived = not bad
+    name = "order condition = Young's steps"
+    head = f"ν1 = {nu1}, ν2 = {nu2}, μ = {mu}: " + "; ".join(rows)
+    if derived and printed:
+        return ConditionResult(name, Status.EXACT, margin=Margin(least, least), detail=(
+            f"every cross term of the printed V̇ estimate is of higher order than −m14‖x‖^ν1 − m24‖y‖^(ν2+μ−1) "
+            f"(or of the same order with ε1, ε2 small), and the printed condition holds: {head}"))
+    if derived != printed:
+        return ConditionResult(name, Status.FAILED, witness=(nu1, nu2, mu), detail=(
+            f"the printed condition {'holds' if printed else 'fails'} but the derivation from the cross terms "
+            f"{'fails at ' + ', '.join(bad) if bad else 'holds'}: {head}"))
+    return ConditionResult(name, Status.FAILED, witness=(nu1, nu2, mu), detail=(
+        f"not of higher order: {', '.join(bad)} (the printed condition fails too): {head}"))

@@ -199,3 +199,26 @@ def test_structured_Vdot_written_differently_holds_at_the_instance():
     vals = _instance_values()
     claim = DerivativeClaim("written differently", derivation.functional, derivation.system, terms)
     assert claim.check(dec.P2.substitution(vals), values=vals).status is Status.EXACT
+
+
+def test_order_condition_derived_from_the_printed_estimate_agrees_with_the_print():
+    assert dec.derived_order_condition(2, 2, 3).status is Status.EXACT
+    halves = [sympy.Rational(k, 2) for k in range(4, 13)]
+    for mu in (sympy.Rational(3, 2), 3):
+        for nu1 in halves:
+            for nu2 in halves:
+                res = dec.derived_order_condition(nu1, nu2, mu)
+                assert "but the derivation" not in res.detail, (nu1, nu2, mu)
+                assert res.holds == dec.decide_order(nu1, nu2, mu).holds, (nu1, nu2, mu)
+
+
+def test_order_condition_derived_names_the_binding_terms():
+    assert "c1‖x‖^{ν1−1}‖y‖^μ" in dec.derived_order_condition(2, 6, 3).detail.split(":")[1]  # ratio 4 ≥ μ
+    assert "c3h1‖y‖^{ν2−1}‖x‖^μ" in dec.derived_order_condition(4, 2, 3).detail.split(":")[1]  # ratio 1
+
+
+def test_a_mutated_printed_order_condition_disagrees_with_the_derivation():
+    wider = lambda n1, n2, mu: 1 < (n2 + mu - 1) / n1 < mu + 1  # noqa: E731
+    res = dec.derived_order_condition(2, 5, 3, printed=wider)  # (5 + 2)/2 = 7/2 < 4, but c1's term is of lower order
+    assert res.status is Status.FAILED and "printed condition holds but the derivation" in res.detail
+    assert dec.derived_order_condition(2, 2, 3, printed=wider).status is Status.EXACT
