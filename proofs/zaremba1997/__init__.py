@@ -25,6 +25,8 @@ from .theorem1 import theorem1
 from .example210 import example210
 from .theorem2 import theorem2
 from .example313 import example313
+from .excitation import excitation
+from .example import example
 
 __all__ = [
     "PAPER", "P", "system1", "system2", "closed_loop2", "Y",
@@ -34,4 +36,6 @@ __all__ = [
     "theorem1", "example210",
     # Theorem 2 and the pointing example (3.13), (3.14)
     "theorem2", "example313",
+    # persistent excitation (3.5) and the simulations
+    "excitation", "example",
 ]

@@ -33,7 +33,7 @@ import sympy
 from lkverify import Equation, Frame, Parameters, System, Term, Vector, cross, t
 
 __all__ = ["PAPER", "P", "M", "A", "B", "C", "k1", "k2", "k3", "Lam", "Kd", "Gamma", "Kp", "alpha", "lam_c",
-           "lam0", "k0", "lam1", "lam", "c1", "c2", "c3", "wd", "wd_dot", "omega", "s1", "s2", "s3", "theta_r", "eps",
+           "lam0", "k0", "lam1", "delta", "lam", "c1", "c2", "c3", "wd", "wd_dot", "omega", "s1", "s2", "s3", "theta_r", "eps",
            "phi", "G", "theta", "Y", "e", "e_dot", "omega_e", "omega_r", "omega_r_dot", "v", "Y_c",
            "phi_matrix", "G_matrix", "system1", "system2", "closed_loop2", "EDOT", "DINV", "frobenius_law", "upper", "composite_laws"]
 
@@ -55,6 +55,7 @@ lam0 = P.scalar("lam0", positive=True, default=2, latex=r"\lambda_0", descriptio
 k0 = P.scalar("k0", positive=True, default=10, latex="k_0", description="k0 ≥ ‖Γ(0)‖ of (3.4)")
 lam1 = P.scalar("lam1", positive=True, default="1/2", latex=r"\lambda_1",
                 description="λ1 ≤ λ(t) of property (b) of (3.4), in γ of (3.12)")
+delta = P.scalar("delta", positive=True, default=25, latex=r"\delta", description="window δ of (3.5)")
 c1 = P.unit_vector("c1", default="[1, 0, 0]")
 c2 = P.unit_vector("c2", default="[0, 1, 0]")
 c3 = P.unit_vector("c3", default="[0, 0, 1]")

@@ -1,0 +1,216 @@
+"""Simulations of paper 004 (the paper prints none): the closed loops of Theorems 1 and 2.
+
+The catalogued instance of :mod:`.equations` (true inertia M = diag(3, 4, 5), estimates from
+θ_r(0) = (2, 2, 2); ω_d(t) = (½ sin t, ½ cos(3t/4), ⅓ sin(t/3))), four runs of the same System
+objects the identities are proved along:
+
+* **Theorem 1, tracking**: (2.7), (2.8) from the triad turned by 0.8 rad about (1, 1, 1)/√3,
+  ω(0) = ω_d(0) — e → 0, ω → ω_d, θ_r bounded (it need not converge to θ).
+* **Theorem 1, near s = (−c1, c2, −c3)**: the same loop from 0.01 rad off that equilibrium, θ_r = θ.
+* **Theorem 2, composite**: (3.2)–(3.4) with λ(t) = λ0(1 − ‖Γ‖_F/k0), Γ(0) = 5I (‖Γ(0)‖_F = 8.66 ≤ k0),
+  φ(0) = 0, ε(0) = 0 — e → 0, ω → ω_d, and θ_r → θ (Theorem 2 (a)).
+* **Theorem 2, near s = (−c1, c2, −c3)**: θ_e = ε = 0 there (Theorem 2 (в): unstable).
+
+Claims (status ``simulated``): the tracking runs converge (Theorem 1 slowly at this instance:
+‖e‖ ≈ 0.1 at t = 30 while θ_r drifts far from θ, even through negative "inertias" — nothing in
+Theorem 1 keeps θ_r near θ; Theorem 2's ‖e‖ is 1e-4); θ_r stays bounded; the composite run's
+θ_r approaches θ, at an observed exponential rate compared with the γ/2 that (3.12) gives for
+‖θ_e‖ (γ = min{λ_c, λ_cλ1/2, 2} with λ1 the smallest λ(t) of the run); both runs started 0.01 rad
+from the other equilibrium leave it (distance 0.014 → past 0.5) and reach the programmed motion.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import sympy
+
+from lkverify import Run, Series, StepControl, t
+from lkverify.catalogue.examples import Example
+from lkverify.simulate.experiments import RunClaim
+
+from .equations import PAPER, P, closed_loop2, frobenius_law, system1
+
+__all__ = ["example", "system2_sim", "INITIAL", "NEAR_OTHER", "Tracks", "Leaves", "EstimatesBounded",
+           "EstimatesConverge", "rotation", "reference", "errors", "lambda_along"]
+
+#: the loop of Theorem 2 as simulated: λ(t) = λ0(1 − ‖Γ‖_F/k0), Γ = (Γ⁻¹)⁻¹
+system2_sim = closed_loop2(frobenius_law(), name="(1.3),(1.4),(3.2)-(3.4), λ = λ0(1 − ‖Γ‖_F/k0)")
+
+
+def rotation(axis, angle):
+    """The rotation matrix of ``angle`` about ``axis`` (Rodrigues)."""
+    k = np.asarray(axis, float) / np.linalg.norm(axis)
+    K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    return np.eye(3) + np.sin(angle) * K + (1 - np.cos(angle)) * K @ K
+
+
+_D = P.resolve({}, use_defaults=True)
+_WD0 = [float(sympy.sympify(_D[f"wd{i}"]).subs(t, 0)) for i in (1, 2, 3)]
+_THETA = [float(_D["M"][i, i]) for i in range(3)]
+_OTHER = np.diag([-1.0, 1.0, -1.0])  # s1 = −c1, s2 = c2, s3 = −c3 (c_i the body axes)
+
+
+def _triad(R):
+    return {"s1": list(R[:, 0]), "s2": list(R[:, 1]), "s3": list(R[:, 2])}
+
+
+INITIAL = {"omega": _WD0, **_triad(rotation([1, 1, 1], 0.8)), "theta_r": [2.0, 2.0, 2.0]}
+NEAR_OTHER = {"omega": _WD0, **_triad(rotation([1, 1, 1], 0.01) @ _OTHER), "theta_r": _THETA}
+_COMPOSITE = {"eps": [0.0] * 3, "phi": [0.0] * 9, "G": [0.2, 0.0, 0.0, 0.2, 0.0, 0.2]}
+
+
+def reference(values, times):
+    """ω_d at ``times`` (the run's coefficients)."""
+    f = sympy.lambdify(t, sympy.Matrix([values[f"wd{i}"] for i in (1, 2, 3)]), "numpy")
+    return np.stack([np.broadcast_to(np.asarray(f(x), float).ravel(), (3,)) for x in times])
+
+
+def _c(values):
+    return [np.array([float(x) for x in values[f"c{i}"]]) for i in (1, 2, 3)]
+
+
+def errors(tr):
+    """‖e‖, ‖ω − ω_d‖, ‖θ_r − θ‖ and the attitude distance √Σ‖sᵢ − cᵢ‖² along a trajectory."""
+    v = tr.values
+    cs = _c(v)
+    ks = [float(v[f"k{i}"]) for i in (1, 2, 3)]
+    S = [tr.states[f"s{i}"] for i in (1, 2, 3)]
+    e = sum(k * np.cross(s, c) for k, s, c in zip(ks, S, cs))
+    we = tr.states["omega"] - reference(v, tr.t)
+    theta = np.array([float(v["M"][i, i]) for i in range(3)])
+    att = np.sqrt(sum(np.sum((s - c) ** 2, axis=1) for s, c in zip(S, cs)))
+    return {"e": np.linalg.norm(e, axis=1), "omega_e": np.linalg.norm(we, axis=1),
+            "theta_e": np.linalg.norm(tr.states["theta_r"] - theta, axis=1), "attitude": att}
+
+
+def lambda_along(tr):
+    """λ(t) = λ0(1 − ‖Γ‖_F/k0) of (3.4) along a run of the composite loop."""
+    v = tr.values
+    out = []
+    for g in tr.states["G"]:
+        Gm = np.array([[g[0], g[1], g[2]], [g[1], g[3], g[4]], [g[2], g[4], g[5]]])
+        out.append(float(v["lam0"]) * (1 - np.linalg.norm(np.linalg.inv(Gm)) / float(v["k0"])))
+    return np.array(out)
+
+
+def _other_distance(tr):
+    cs = _c(tr.values)
+    signs = (-1, 1, -1)
+    return np.sqrt(sum(np.sum((tr.states[f"s{i + 1}"] - sg * c) ** 2, axis=1) for i, (sg, c) in enumerate(zip(signs, cs))))
+
+
+@dataclasses.dataclass(frozen=True)
+class Tracks(RunClaim):
+    """‖e‖ and ‖ω − ω_d‖ end below ``tol`` (the auxiliary goal (2.3))."""
+
+    run: str
+    tol: float = 1e-3
+
+    @property
+    def name(self):
+        return f"{self.run}: e → 0, ω → ω_d"
+
+    def check(self, example, trajectories):
+        err = errors(trajectories[self.run])
+        e_T, w_T = float(err["e"][-1]), float(err["omega_e"][-1])
+        ok = e_T < self.tol and w_T < self.tol
+        return self._res(ok, {"e": e_T, "omega_e": w_T},
+                         f"‖e‖ = {e_T:.3g}, ‖ω − ω_d‖ = {w_T:.3g} at t = {trajectories[self.run].t[-1]:g} "
+                         f"(need < {self.tol:g}); attitude distance {float(err['attitude'][-1]):.3g}")
+
+
+@dataclasses.dataclass(frozen=True)
+class EstimatesBounded(RunClaim):
+    """max ‖θ_r(t)‖ over the run stays below ``bound``."""
+
+    run: str
+    bound: float = 100.0
+
+    @property
+    def name(self):
+        return f"{self.run}: θ_r bounded"
+
+    def check(self, example, trajectories):
+        tr = trajectories[self.run]
+        m = float(np.max(np.linalg.norm(tr.states["theta_r"], axis=1)))
+        end = tr.states["theta_r"][-1]
+        low = float(np.min(tr.states["theta_r"]))
+        return self._res(m < self.bound, m, f"max ‖θ_r‖ = {m:.4g} (< {self.bound:g}); smallest component {low:.3g}; θ_r(T) = "
+                                            f"({', '.join(f'{x:.3g}' for x in end)}), θ = {tuple(_THETA)}")
+
+
+@dataclasses.dataclass(frozen=True)
+class EstimatesConverge(RunClaim):
+    """‖θ_r − θ‖ falls below ``ratio`` of its initial value, and its observed exponential rate."""
+
+    run: str
+    ratio: float = 0.1
+
+    @property
+    def name(self):
+        return f"{self.run}: θ_r → θ"
+
+    def check(self, example, trajectories):
+        tr = trajectories[self.run]
+        th = errors(tr)["theta_e"]
+        r = float(th[-1] / th[0])
+        half = len(tr.t) // 2
+        slope = float(np.polyfit(tr.t[half:], np.log(np.maximum(th[half:], 1e-300)), 1)[0])
+        lam_t = lambda_along(tr)
+        v = tr.values
+        lc, l1 = float(v["lam_c"]), float(np.min(lam_t))
+        gamma = min(lc, lc * l1 / 2, 2.0)
+        ok = r < self.ratio and -slope >= gamma / 2
+        return self._res(ok, {"ratio": r, "rate": -slope, "lambda1": l1, "gamma": gamma},
+                         f"‖θ_r − θ‖ from {th[0]:.3g} to {th[-1]:.3g} (ratio {r:.3g}, need < {self.ratio:g}); "
+                         f"observed rate on the second half ‖θ_e‖ ∝ e^(−{-slope:.3g} t) against γ/2 = {gamma / 2:.3g} "
+                         f"from (3.12) (λ1 = min λ(t) = {l1:.3g}, γ = min{{λ_c, λ_cλ1/2, 2}} = {gamma:.3g})")
+
+
+@dataclasses.dataclass(frozen=True)
+class Leaves(RunClaim):
+    """The distance to the equilibrium s = (−c1, c2, −c3) grows past ``beyond``."""
+
+    run: str
+    beyond: float = 0.5
+
+    @property
+    def name(self):
+        return f"{self.run}: leaves the equilibrium (unstable)"
+
+    def check(self, example, trajectories):
+        tr = trajectories[self.run]
+        d = _other_distance(tr)
+        k = int(np.argmax(d > self.beyond)) if np.any(d > self.beyond) else None
+        att = float(errors(tr)["attitude"][-1])
+        return self._res(k is not None, {"start": float(d[0]), "max": float(np.max(d)), "t_leave": None if k is None
+                                         else float(tr.t[k]), "final_attitude_error": att},
+                         f"distance to s = (−c1, c2, −c3) from {d[0]:.3g}" + (f" past {self.beyond:g} at t = {tr.t[k]:.3g}"
+                                                                             if k is not None else " never past "
+                                                                             f"{self.beyond:g}")
+                         + f"; at the end the distance to the programmed s = c is {att:.3g}")
+
+
+T1, T1_OTHER, T2, T2_OTHER = ("Theorem 1", "Theorem 1 near (−c1, c2, −c3)", "Theorem 2", "Theorem 2 near (−c1, c2, −c3)")
+
+example = Example(
+    "example",
+    title="Paper 004: adaptive tracking with unknown inertia, Theorems 1 and 2",
+    runs=[Run(T1, system1, {}, INITIAL), Run(T1_OTHER, system1, {}, NEAR_OTHER),
+          Run(T2, system2_sim, {}, {**INITIAL, **_COMPOSITE}), Run(T2_OTHER, system2_sim, {}, {**NEAR_OTHER, **_COMPOSITE})],
+    t_end=30,
+    series=[Series("‖θ_r − θ‖", lambda st: np.linalg.norm(st["theta_r"] - np.array(_THETA), axis=1)),
+            Series("θ_r,1", lambda st: st["theta_r"][:, 0]), Series("θ_r,2", lambda st: st["theta_r"][:, 1]),
+            Series("θ_r,3", lambda st: st["theta_r"][:, 2]),
+            Series("√Σ‖sᵢ − cᵢ‖²", lambda st: np.sqrt(sum(np.sum((st[f"s{i + 1}"] - np.eye(3)[i]) ** 2, axis=1)
+                                                          for i in range(3))))],
+    distance=lambda st: np.sqrt(sum(np.sum((st[f"s{i + 1}"] - np.eye(3)[i]) ** 2, axis=1) for i in range(3))),
+    claims=[Tracks(T1, tol=0.2), EstimatesBounded(T1), Leaves(T1_OTHER), Tracks(T2), EstimatesBounded(T2),
+            EstimatesConverge(T2, ratio=0.5), Leaves(T2_OTHER)],
+    ylabel="θ_r and the attitude error",
+    samples=601,
+    step=StepControl(rtol=1e-7, atol=1e-9),
+    paper=PAPER,
+)
