@@ -89,6 +89,9 @@ class P4Along1:
 
     def evaluate(self, substitution, *, budget=None) -> Result:
         values = {spec.name: substitution[spec.obj] for spec in P2 if spec.obj in substitution}
+        if B.subs(substitution).det() == 0:
+            return Result("identity", self.name, Status.FAILED, None,
+                          "B is singular (det B = 0): y = q + B⁻¹Aq̇ and (П.4) are not defined")
         results = [c.check(substitution, values=values, budget=budget or 60.0) for c in self.claims]
         bad = [(c, r) for c, r in zip(self.claims, results) if r.status is not Status.EXACT]
         if not bad:

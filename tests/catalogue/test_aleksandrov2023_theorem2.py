@@ -222,3 +222,9 @@ def test_a_mutated_printed_order_condition_disagrees_with_the_derivation():
     res = dec.derived_order_condition(2, 5, 3, printed=wider)  # (5 + 2)/2 = 7/2 < 4, but c1's term is of lower order
     assert res.status is Status.FAILED and "printed condition holds but the derivation" in res.detail
     assert dec.derived_order_condition(2, 2, 3, printed=wider).status is Status.EXACT
+
+
+def test_singular_B_fails_the_hypotheses_without_an_error():
+    res = {h.name: h.evaluate(_sub(b11=0, b12=0)) for h in theorem2.hypotheses}
+    for name in ("B nonsingular", "(7) asymptotically stable", "(8) asymptotically stable", P4_along_1.name):
+        assert res[name].status is Status.FAILED, name
