@@ -35,7 +35,7 @@ from lkverify import Equation, Frame, Parameters, System, Term, Vector, cross, t
 __all__ = ["PAPER", "P", "M", "A", "B", "C", "k1", "k2", "k3", "Lam", "Kd", "Gamma", "Kp", "alpha", "lam_c",
            "lam0", "k0", "lam1", "delta", "lam", "c1", "c2", "c3", "wd", "wd_dot", "omega", "s1", "s2", "s3", "theta_r", "eps",
            "phi", "G", "theta", "Y", "e", "e_dot", "omega_e", "omega_r", "omega_r_dot", "v", "Y_c",
-           "phi_matrix", "G_matrix", "system1", "system2", "closed_loop2", "EDOT", "DINV", "frobenius_law", "upper", "composite_laws"]
+           "phi_matrix", "G_matrix", "system1", "system2", "closed_loop2", "EDOT", "DINV", "frobenius_law", "upper", "composite_laws", "closed_loop1"]
 
 PAPER = "zaremba1997"
 
@@ -134,15 +134,19 @@ def _euler(torques):
                             *torques], mass=M, mass_text="M", mass_latex="M")
 
 
-# (1.3), (1.4) with the control (2.7) and the adaptation (2.8)
-system1 = System([
-    _euler([Term(_M_r * omega_r_dot + cross(omega_r, _M_r * omega(t)), text="M_r ω̇_r + ω_r×M_r ω",
-                 latex=r"M_r\dot\omega_r+\omega_r\times M_r\omega"),
-            Term(-Kd * v, text="−K_d v", latex="-K_d v")]),
-    *_poisson(),
-    Equation(theta_r, [Term(-Gamma * Y(omega(t), omega_r, omega_r_dot).T * v, text="−ΓYᵀv",
-                            latex=r"-\Gamma Y^\top v")]),
-], parameters=P, name="(1.3),(1.4),(2.7),(2.8)")
+def closed_loop1(sign=-1, *, name="(1.3),(1.4),(2.7),(2.8)"):
+    """(1.3), (1.4) with the control (2.7) and the adaptation (2.8) θ̇_r = sign·ΓYᵀv (the paper: sign = −1)."""
+    return System([
+        _euler([Term(_M_r * omega_r_dot + cross(omega_r, _M_r * omega(t)), text="M_r ω̇_r + ω_r×M_r ω",
+                     latex=r"M_r\dot\omega_r+\omega_r\times M_r\omega"),
+                Term(-Kd * v, text="−K_d v", latex="-K_d v")]),
+        *_poisson(),
+        Equation(theta_r, [Term(sign * Gamma * Y(omega(t), omega_r, omega_r_dot).T * v, text="−ΓYᵀv",
+                                latex=r"-\Gamma Y^\top v")]),
+    ], parameters=P, name=name)
+
+
+system1 = closed_loop1()
 
 
 #: 1/det(Γ⁻¹) in the identities' copy of the loop (Γ = adj(Γ⁻¹)·DINV): V̇ is then a polynomial, linear in DINV

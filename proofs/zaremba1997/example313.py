@@ -50,8 +50,12 @@ def control_313_results(values, printed_Ke=None):
                     [("Y_cθ_r − K_pe − αv (3.2)", u[i])], reference="(3.13)") for i in range(3)]
 
 
-def region_314(values):
-    """(3.6) for the pointing case against the printed (3.14): exact."""
+def region_314(values, printed_threshold=None):
+    """(3.6) for the pointing case against the printed (3.14) s0·c0 > 2/Λ − 1 (or another ``printed_threshold(Λ)``): exact.
+
+    A threshold below 2/Λ − 1 claims too large a region: it is refuted at an exact x = s0·c0 between
+    the two, where eᵀe − V_δ/Λ < 0.
+    """
     s, c = _vec("s0"), _vec("c0")
     x = sympy.Symbol("x", real=True)
     L = sympy.sympify(values["Lam"])
@@ -59,11 +63,23 @@ def region_314(values):
                    [("‖s0‖²‖c0‖²", dot(s, s) * dot(c, c)), ("−(s0·c0)²", -dot(s, c) ** 2)], reference="Lagrange's identity")]
     lhs = (1 - x ** 2) - (2 - 2 * x) / L        # eᵀe − V_δ/Λ on unit vectors, x = s0·c0
     fac = sympy.factor(lhs)
-    threshold = 2 / L - 1
-    same = sympy.expand(lhs - (1 - x) * (x - threshold)) == 0
-    out.append(Result("region", "(3.14): eᵀe > V_δ/Λ ⇔ s0·c0 > 2/Λ − 1 (s0 ≠ c0)", Status.EXACT if same else Status.FAILED,
-                      str(threshold), f"eᵀe − V_δ/Λ = {fac} = (1 − x)(x − (2/Λ − 1)), x = s0·c0 ∈ [−1, 1]: for x < 1 "
-                      f"positive iff x > 2/Λ − 1 = {threshold}; the printed (3.14)"))
+    roots = sorted(r for r in sympy.solve(lhs, x) if r != 1)
+    derived = roots[0] if roots else sympy.Integer(1)  # eᵀe − V_δ/Λ = (1 − x)(x − derived)
+    printed = 2 / L - 1 if printed_threshold is None else sympy.sympify(printed_threshold(L))
+    same = sympy.expand(lhs - (1 - x) * (x - printed)) == 0
+    if same:
+        status, detail = Status.EXACT, "the printed region is (3.6) exactly"
+    elif printed < derived:
+        wx = (printed + derived) / 2
+        status = Status.FAILED
+        detail = (f"too large: at s0·c0 = {wx} (inside the printed region) eᵀe − V_δ/Λ = {lhs.subs(x, wx)} < 0, "
+                  f"outside (3.6)")
+    else:
+        status, detail = Status.FAILED, f"smaller than (3.6): s0·c0 ∈ ({derived}, {printed}] is in (3.6) but not printed"
+    out.append(Result("region", "(3.14): eᵀe > V_δ/Λ ⇔ s0·c0 > 2/Λ − 1 (s0 ≠ c0)", status,
+                      {"derived": str(derived), "printed": str(printed)},
+                      f"eᵀe − V_δ/Λ = {fac}, x = s0·c0 ∈ [−1, 1]: for x < 1 positive iff x > {derived}; printed "
+                      f"threshold {printed}: {detail}"))
     return out
 
 

@@ -1,0 +1,180 @@
+"""Paper 004 (Zaremba 1997): the catalogue's checks hold where the paper is right, fail where it is not,
+and every checker refutes a mutated claim (a wrong term of Y, a flipped sign in (2.8), a wrong γ, a
+region too large) while accepting a true claim written differently."""
+
+import importlib
+
+import pytest
+import sympy
+
+from lkverify import Status, cross
+from lkverify.proofs.zaremba1997 import P, example210, example313, excitation, parametrisation, theorem1, theorem2
+
+eq = importlib.import_module("lkverify.proofs.zaremba1997.equations")
+par = importlib.import_module("lkverify.proofs.zaremba1997.parametrisation")
+th1 = importlib.import_module("lkverify.proofs.zaremba1997.theorem1")
+th2 = importlib.import_module("lkverify.proofs.zaremba1997.theorem2")
+ex210 = importlib.import_module("lkverify.proofs.zaremba1997.example210")
+ex313 = importlib.import_module("lkverify.proofs.zaremba1997.example313")
+exc = importlib.import_module("lkverify.proofs.zaremba1997.excitation")
+
+DEFAULTS = P.resolve({}, use_defaults=True)
+
+
+def statuses(results):
+    return {r.name: r.status for r in results}
+
+
+# -- (1.5) and Lemmas 2, 3 ---------------------------------------------------------------------------------------
+
+def test_printed_regressor_is_exact():
+    assert all(r.status is Status.EXACT for r in par.regressor_results())
+
+
+def test_wrong_term_in_Y_is_refuted():
+    def Y_wrong(w, wr, wrd):  # the sign of Y[1,2] flipped
+        Y = eq.Y(w, wr, wrd)
+        Y[0, 1] = -Y[0, 1]
+        return Y
+
+    res = par.regressor_results(Y_wrong)
+    assert [r.status for r in res] == [Status.FAILED, Status.EXACT, Status.EXACT]
+    assert "Y[1,2]·θ2" in res[0].detail and res[0].value["witness_value"] != "0"
+
+
+def test_Y_written_differently_passes():
+    def Y_other(w, wr, wrd):  # row 1 from the cross product itself, not retyped
+        Y = eq.Y(w, wr, wrd)
+        M = sympy.diag(*sympy.symbols("a b c"))
+        row = [sympy.diff((M * wrd + cross(wr, M * w))[0], x) for x in sympy.symbols("a b c")]
+        Y[0, :] = sympy.Matrix([row])
+        return Y
+
+    assert all(r.status is Status.EXACT for r in par.regressor_results(Y_other))
+
+
+def test_lemma3_print_lacks_Lambda_squared_but_holds_at_Lambda_1():
+    st = statuses(par.lemma_results(DEFAULTS))
+    assert st["Lemma 3 (2.5) as printed: ‖ω_e‖² + ‖e‖² = ‖v‖² − 2Λω_eᵀe"] is Status.FAILED
+    assert st["Lemma 3 (2.5) derived: ‖ω_e‖² + Λ²‖e‖² = ‖v‖² − 2Λω_eᵀe"] is Status.EXACT
+    assert st["Lemma 2: ω_eᵀe = d/dt(−Σkᵢcᵢᵀsᵢ) along (1.4)"] is Status.EXACT
+    at1 = statuses(par.lemma_results(P.resolve({"Lam": "1"}, use_defaults=True)))
+    assert at1["Lemma 3 (2.5) as printed: ‖ω_e‖² + ‖e‖² = ‖v‖² − 2Λω_eᵀe"] is Status.EXACT
+
+
+# -- Theorem 1 and (2.10) ----------------------------------------------------------------------------------------
+
+def test_theorem1_identity_exact_and_flipped_adaptation_refuted():
+    assert [r.status for r in th1.theorem1_results(DEFAULTS)] == [Status.EXACT, Status.EXACT]
+    flipped = th1.theorem1_results(DEFAULTS, system=eq.closed_loop1(+1))
+    assert flipped[1].status is Status.FAILED                      # (2.9) with θ̇_r = +ΓYᵀv
+    assert flipped[0].status is Status.FAILED                      # the first line writes θ̇_e by (2.8) as printed
+
+
+def test_theorem1_at_other_gains_and_bad_gain():
+    rep = theorem1.run({"Kd": "[[3,1,0],[1,3,0],[0,0,2]]", "Gamma": "diag(1,2,3)", "Lam": "3/2"})
+    assert rep.exit_code == 0
+    rep = theorem1.run({"k2": "1"})                                  # k1 = k2: not distinct
+    assert rep.exit_code == 1 and "kᵢ > 0 pairwise distinct" in rep.verdict
+
+
+def test_example210_print_wrong_unless_Lambda_1():
+    res = ex210.example210_results(DEFAULTS)
+    assert all(r.status is Status.FAILED for r in res)
+    assert all("−ΛY(ω, e, ė)θ_r" in r.detail.split("not in the derivation")[0] for r in res)  # that term confirmed
+    at1 = ex210.example210_results(P.resolve({"Lam": "1"}, use_defaults=True))
+    assert all(r.status is Status.EXACT for r in at1)
+    written = [("−K_d(ω + Λe)", -eq.Kd * (eq.omega(eq.t) + eq.Lam * eq.e)),
+               ("−ΛY(ω, e, ė)θ_r", -eq.Lam * eq.Y(eq.omega(eq.t), eq.e, eq.EDOT) * eq.theta_r(eq.t))]
+    assert all(r.status is Status.EXACT for r in ex210.example210_results(DEFAULTS, written))
+
+
+# -- Theorem 2 ---------------------------------------------------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def theorem2_default():
+    return theorem2.run({})
+
+
+def test_theorem2_findings(theorem2_default):
+    st = statuses(theorem2_default.results)
+    assert st["(3.7): T1 = d/dt ½vᵀMv"] is Status.EXACT
+    assert st["(3.8): T2 + T3"] is Status.EXACT
+    assert st["(3.9) first line: T4 = d/dt ½‖η‖²"] is Status.FAILED
+    assert st["(3.9) first line − T4 derived = ηᵀ(v × Mω)"] is Status.EXACT
+    assert st["T4 derived: −λ_c‖η‖² − ηᵀ(v × Mω)"] is Status.EXACT
+    assert st["(3.9) second line = first line (as printed)"] is Status.FAILED
+    assert st["(3.9) second line with −(λ_c/2)‖η‖² = first line"] is Status.EXACT
+    assert st["(3.10) from the printed pieces: Q ⪰ 0 (Young's step, μ = 2σ_M)"] is Status.EXACT
+    assert st["(3.10) along the true loop (1.3), (3.2)–(3.4)"] is Status.FAILED
+    assert st["(3.12): V̇ + γV ≤ 0 on D (3.6), given (3.10)"] is Status.EXACT
+    assert st["γ of (3.12) against the largest γ of this step"] is Status.EXACT
+
+
+def test_wrong_gamma_refuted_and_reordered_gamma_passes():
+    lc, l1 = sympy.Integer(1), sympy.Rational(1, 2)
+    res = th2.gamma_results(DEFAULTS, gamma=sympy.Min(2 * lc, lc * l1, 4))     # twice the printed γ
+    assert res[0].status is Status.FAILED and "negative" in res[0].detail
+    res = th2.gamma_results(DEFAULTS, gamma=sympy.Min(2, lc * l1 / 2, lc))
+    assert res[0].status is Status.EXACT
+    gamma, coeffs, gmax = th2.gamma_coefficients(P.resolve({"lam_c": "3", "lam1": "4"}, use_defaults=True))
+    assert gmax == 2 and gamma == 2                                              # min{3, 6, 2}
+
+
+def test_alpha_below_threshold_fails_young_step():
+    v = P.resolve({"alpha": "20"}, use_defaults=True)                           # λ_cσ_M² = 25
+    assert th2.hypotheses2(v)[0].status is Status.FAILED
+    a = th2.Abstract(v)
+    vs, ws, zs = (sympy.Matrix(sympy.symbols(f"{n}1:4", real=True)) for n in ("qv", "qw", "qz"))
+    from lkverify.certify.matrices import matrix_positive_definite
+    form = 20 * vs.dot(vs) - vs.dot(a.M * zs) + zs.dot(zs) / 4 + ws.dot(ws) / 2
+    H = sympy.hessian(form, list(vs) + list(ws) + list(zs)) / 2
+    assert matrix_positive_definite(H, semidefinite=True).status is Status.FAILED
+    v = P.resolve({"alpha": "25"}, use_defaults=True)                           # the exact threshold: still ⪰ 0
+    form = 25 * vs.dot(vs) - vs.dot(a.M * zs) + zs.dot(zs) / 4 + ws.dot(ws) / 2
+    H = sympy.hessian(form, list(vs) + list(ws) + list(zs)) / 2
+    assert matrix_positive_definite(H, semidefinite=True).status is Status.EXACT
+
+
+# -- (3.13), (3.14) ----------------------------------------------------------------------------------------------
+
+def test_example313_control_and_region():
+    assert all(r.status is Status.EXACT for r in ex313.control_313_results(DEFAULTS))
+    wrong = ex313.control_313_results(DEFAULTS, printed_Ke=lambda kp, a, L, lc, Mr: (kp + a) * sympy.eye(3) + lc * L * Mr)
+    assert all(r.status is Status.FAILED for r in wrong)
+    assert [r.status for r in ex313.region_314(DEFAULTS)] == [Status.EXACT, Status.EXACT]
+    too_large = ex313.region_314(DEFAULTS, printed_threshold=lambda L: 1 / L - 1)[-1]
+    assert too_large.status is Status.FAILED and "too large" in too_large.detail
+    rewritten = ex313.region_314(DEFAULTS, printed_threshold=lambda L: (2 - L) / L)[-1]
+    assert rewritten.status is Status.EXACT
+
+
+def test_region_fraction_grows_with_Lambda():
+    fr = [ex313.region_fraction(x) for x in ("1/2", "1", "2", "4", "100")]
+    assert fr == [0, 0, sympy.Rational(1, 2), sympy.Rational(3, 4), sympy.Rational(99, 100)]
+    rep = example313.run({"Lam": "4"})
+    assert rep.exit_code == 1 and rep.verdict == "failed: text: 'as Λ decreases D tends to the unit sphere'"
+
+
+# -- (3.5) -------------------------------------------------------------------------------------------------------
+
+def test_excitation_positive_for_catalogued_motion_and_zero_for_constant_axis():
+    bounds, grid = exc.excitation_bounds(DEFAULTS, horizon=80.0, samples=2001)
+    assert all(b1 > 0.05 and b2 > b1 for b1, b2 in bounds.values())
+    still = P.resolve({"wd1": "1/2", "wd2": "0", "wd3": "0"}, use_defaults=True)
+    bounds, _ = exc.excitation_bounds(still, horizon=60.0, samples=1001)
+    assert all(b1 == 0 for b1, _ in bounds.values())
+
+
+def test_items_at_defaults():
+    assert parametrisation.run({}).exit_code == 1       # Lemma 3 as printed
+    assert example210.run({}).exit_code == 1            # (2.10) as printed
+    assert theorem1.run({}).exit_code == 0
+    assert excitation.run({}).exit_code == 0
+
+
+@pytest.mark.slow
+def test_example_simulations():
+    ex = importlib.import_module("lkverify.proofs.zaremba1997.example").example
+    rep = ex.run()
+    assert rep.exit_code == 0, rep.as_text()
