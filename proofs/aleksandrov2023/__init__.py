@@ -51,8 +51,10 @@ from .theorem3_constants import THEOREM3_CONSTANTS
 from .section6_conditions import section6
 from .theorem1 import theorem1
 from .theorem1_bound import theorem1_bound
+from .corollary1 import corollary1
 from .theorem2 import theorem2
 from .theorem2_example import theorem2_counter, theorem2_example
+from .linear_mu1 import linear_mu1
 
 __all__ = [
     "PAPER",
@@ -65,7 +67,9 @@ __all__ = [
     "R_TARGET", "SECTION6", "FIG7_HISTORY", "PRINTED_15",
     "fig1", "fig2", "fig3", "fig4", "fig5", "fig6", "fig7", "fig7_chi", "section6",
     # Theorem 1 (system (3), functional (П.1))
-    "theorem1", "theorem1_bound",
+    "theorem1", "theorem1_bound", "corollary1",
     # Theorem 2 (decomposition, section 4)
     "theorem2", "theorem2_example", "theorem2_counter",
+    # the linear case μ = 1 (linearisation, damping threshold)
+    "linear_mu1",
 ]

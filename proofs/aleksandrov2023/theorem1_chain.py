@@ -14,7 +14,8 @@ in the measures w = ‖q̇(t)‖, e = ‖q(t)‖, j = (∫‖q(ξ)‖^{μ+1}dξ)
 ∫‖q‖^μ ≤ τ^{1/(μ+1)} j^μ and ∫(ξ−t+τ)‖q‖^μ ≤ k_τ j^μ by Hölder, k_τ = (τ^{μ+2}/(μ+2))^{1/(μ+1)}):
 
 * V ≥ L: −c3‖q‖‖q̇‖ by Young (η_w); −c4 k_τ‖q‖j^μ by Young with exponents μ+1, (μ+1)/μ (η_K)
-  and ‖q‖^{μ+1} ≤ δ_q^{μ−1}‖q‖² on the region;
+  and ‖q‖^{μ+1} ≤ δ_q^{μ−1}‖q‖² on the region; its j^{μ+1} part is absorbed by αj^{μ+1}
+  (so L is a quadratic form in ‖q̇‖, ‖q‖, as (П.2) without its integral term);
 * V ≤ U: the printed upper bound (with ‖q‖‖q̇‖, :mod:`.theorem1_bound`), Hölder on the window;
 * V̇ ≤ W: λc9‖q̇‖‖q‖^μ and λp0‖q̇‖‖q‖^σ by Young (η) and ‖q‖^{2μ} ≤ δ_q^{μ−1}‖q‖^{μ+1},
   ‖q‖^{2σ} ≤ δ_q^{2σ−μ−1}‖q‖^{μ+1} — the place where (6) 2σ > μ + 1 enters; the memory terms
@@ -76,7 +77,9 @@ def _lower():
                   CauchySchwarz(q(t), K_int, (measured(E_), gradient_tree(J_, weight=xi - t + tau, holder=_holder)),
                                 factor=-1),
                   then=(YoungEach(((e, j**mu, q_, q_ / mu, eta_K),)), OnRegion("e", 2))),
-        TermBound("∫(α+β(ξ−t+τ))‖q(ξ)‖^{μ+1}dξ", alpha * j ** (mu + 1),
+        # ≥ αj^{μ+1}, stated as the part the Young remainder above needs (α ≥ it: checked), so that L is
+        # quadratic in (w, e): V ≥ L then gives ‖q‖², ‖q̇‖² ≤ V/l for the decay of Corollary 1
+        TermBound("∫(α+β(ξ−t+τ))‖q(ξ)‖^{μ+1}dξ", c4 * k_tau * eta_K ** (-1 / mu) * mu * j**q_ / q_,
                   WindowWeight("j", mu + 1, weight=alpha + beta * (xi - t + tau))),
     ]
 
@@ -219,7 +222,12 @@ def find_choices(values) -> dict:
     eta_ = _below(bm / (4 * (c["c9"] + c["p0"])))  # (λc9 + λp0)η/2 ≤ λc7/8
     eta_j_ = _below(L * bm / (4 * cj))  # c_j η_j/2 ≤ λc7/8
     q_ = mu_ + 1
-    eta_K_ = _above((2 * kt * c["k_tau"] * mu_ / (q_ * float(alpha_))) ** mu_)  # I-part ≤ α/2
+    # η_K exact: the j^{μ+1} part of the Young remainder is exactly αj^{μ+1} (L quadratic in w, e)
+    from lkverify.declare.parameters import apply_substitution
+
+    mu_x = sympy.sympify(values["mu"])
+    kt_x = apply_substitution(k_tau, system3.parameters.substitution(values))
+    eta_K_ = (sympy.sympify(values["kappa_t"]) * kt_x * mu_x / ((mu_x + 1) * alpha_)) ** mu_x
     e9 = (L * (c["c9"] + c["p0"]))
     cands = [0.5,
              # e^{μ+1}: (λc9)δ^{μ−1}/(2η) + λp0 δ^{2σ−μ−1}/(2η) ≤ c11/4

@@ -199,3 +199,17 @@ def test_young_with_a_wrong_parameter_in_a_chain_step_fails():
     vals = P3.resolve(TC.find_choices(P3.resolve({}, use_defaults=True)), use_defaults=True)
     res = lower.with_bounds(bounds=bounds).check(vals, budget=20)
     assert not res.status.is_proof
+
+
+# ---- Corollary 1 ----------------------------------------------------------------------------------
+def test_corollary1_constants_are_certified_at_the_defaults():
+    from lkverify.proofs.aleksandrov2023.corollary1 import corollary1
+
+    rep = corollary1.run({}, budget=60)
+    assert rep.verdict.startswith("established"), rep.verdict
+    by = {r.name: r for r in rep.results}
+    for name in ("d1", "d2", "d3", "delta_tilde", "c_tilde"):
+        assert by[name].status is Status.CERTIFIED, name
+    assert "d1 ≤" not in by["d1"].detail  # the item computes d1, it does not take a printed value
+    # the exponent of the envelope is −1/(μ − 1) = −1/2 (p = (μ + 1)/2 = 2)
+    assert "^(−0.5)" in by["envelope d1"].detail
