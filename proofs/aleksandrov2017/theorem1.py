@@ -46,7 +46,7 @@ printed_Vdot = [
          latex=r"-\gamma h^\nu(t)\omega^\top J(a_1(\omega\times s_1)\times r_1+a_2(\omega\times s_2)\times r_2)"),
 ]
 
-from .theorem1_chain import CONCLUSION, EnvelopeAgainstRun, derivation, find_choices, steps  # noqa: E402  (it imports functional)
+from .theorem1_chain import CONCLUSION, EnvelopeAgainstRun, find_choices, split, steps  # noqa: E402  (it imports functional)
 
 theorem1 = Theorem(
     "theorem1",
@@ -56,7 +56,7 @@ theorem1 = Theorem(
     hypotheses=[Hypothesis("nu >= 1", nu - 1, strict=False, reference="(10), (11)"),
                 ConditionsOnH("(5), (10), (11) on h", h, nu, reference="(5), (10), (11)")],
     claims=[DerivativeClaim("Vdot_printed", functional, system, printed_Vdot,
-                            description="the printed V̇ along (2),(9), as printed"), derivation],
+                            description="the printed V̇ along (2),(9), as printed"), split],
     steps=steps,
     decay=CONCLUSION,
     choices=find_choices,

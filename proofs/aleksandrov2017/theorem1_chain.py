@@ -13,7 +13,7 @@ paper's ‖s1−r1‖² + ‖s2−r2‖² < δ1²):
 
 * V ≥ L and V ≤ U: ½ωᵀJω by the eigenvalues of J, (a_i/2)e_i² exactly, and
   |γh^ν ωᵀJη| ≤ γh^ν‖J‖w(a1e1 + a2e2) (Cauchy–Schwarz, ‖s×r‖ ≤ ‖s−r‖), then Young;
-* V̇ ≤ W along the structured V̇ (:data:`derivation`, exact for every h):
+* V̇ ≤ W along the printed V̇ (exact for every h), its third term split (:data:`split`, exact):
   −2hωᵀDω ≤ −2λ_min(D)hw²;  γνh^{ν−1}ḣωᵀJη ≤ γνh^{ν−1}‖J‖(|ḣ|w)(a1e1 + a2e2), then (10)
   |ḣ| ≤ Lh^{(3−ν)/2} (L the exact sup, decided by :mod:`.conditions_h`) and Young with
   h^{(ν+1)/2}we ≤ η_h hw²/2 + h^ν e²/(2η_h);  −γh^ν ηᵀ(ω×Jω) ≤ γh^ν‖J‖w²(a1e1 + a2e2) and
@@ -35,7 +35,7 @@ import math
 import numpy as np
 import sympy
 
-from lkverify import Budget, DerivativeClaim, Status, Term, dot, quad, t
+from lkverify import Budget, IdentityClaim, Status, Term, dot, quad, t
 from lkverify.certify.bounds import certify_positive
 from lkverify.certify.steps.chain import TermBound, TermwiseBound, collect_monomials
 from lkverify.certify.steps.measures import Region, norm_measure
@@ -47,9 +47,9 @@ from lkverify.declare.rigidbody import restoring_torque_rate
 
 from .conditions_h import decide_h_conditions
 from .equations import P, D, J, a1, a2, eps, eta, gamma, h, nu, omega, r1, r2, s1, s2, system
-from .theorem1 import functional
+from .theorem1 import functional, printed_Vdot
 
-__all__ = ["CONCLUSION", "EnvelopeAgainstRun", "REGION", "chain_steps", "condition10", "condition11", "derivation",
+__all__ = ["CONCLUSION", "EnvelopeAgainstRun", "REGION", "chain_steps", "condition10", "condition11", "split",
            "find_choices", "lemma6", "steps"]
 
 
@@ -76,15 +76,16 @@ REGION = Region({E1: delta1, E2: delta1})
 
 M = restoring_torque_rate(omega, (s1, s2), (r1, r2), (a1, a2))  # a1(ω×s1)×r1 + a2(ω×s2)×r2 = −η̇ by (2)
 
-# ---- V̇ along (2), (9), structured: the printed third term split into its three parts --------------
-derivation = DerivativeClaim("Vdot_structured", functional, system, [
-    Term(-2 * h(t) * quad(omega(t), D), text="−2hωᵀDω"),
-    Term(gamma * nu * h(t) ** (nu - 1) * h(t).diff(t) * quad(omega(t), J, eta), text="γνh^{ν−1}ḣωᵀJη"),
-    Term(-gamma * h(t) ** nu * dot(eta, omega(t).cross(J * omega(t))), text="−γh^ν ηᵀ(ω×Jω)"),
-    Term(-2 * gamma * h(t) ** (nu + 1) * quad(eta, D, omega(t)), text="−2γh^{ν+1}ηᵀDω"),
-    Term(-gamma * h(t) ** nu * dot(eta, eta), text="−γh^ν‖η‖²"),
-    Term(-gamma * h(t) ** nu * quad(omega(t), J, M), text="−γh^ν ωᵀJM"),
-], description="V̇ along (2),(9) in the structured form the V̇ bound uses (the printed third term split)")
+# ---- V̇ along (2), (9): the printed V̇ (proved exact in :mod:`.theorem1`), its third term split ------------
+_T1, _T2, _T3, _T4 = printed_Vdot  # −2hωᵀDω, γνh^{ν−1}ḣωᵀJη, γh^ν ηᵀ(−ω×Jω − 2hDω − η), −γh^ν ωᵀJM
+_split = (Term(-gamma * h(t) ** nu * dot(eta, omega(t).cross(J * omega(t))), text="−γh^ν ηᵀ(ω×Jω)"),
+          Term(-2 * gamma * h(t) ** (nu + 1) * quad(eta, D, omega(t)), text="−2γh^{ν+1}ηᵀDω"),
+          Term(-gamma * h(t) ** nu * dot(eta, eta), text="−γh^ν‖η‖²"))
+#: the printed third term is the sum of the three the bounds treat separately (an identity, no derivative)
+split = IdentityClaim("V̇ third term split", (_T3,), _split, system,
+                      description="γh^ν ηᵀ(−ω×Jω − 2hDω − η) = −γh^ν ηᵀ(ω×Jω) − 2γh^{ν+1}ηᵀDω − γh^ν‖η‖²")
+#: the lhs of V̇ ≤ W: the printed V̇ (= the derivative, exact) with its third term split (= by :data:`split`)
+VDOT_TERMS = (_T1, _T2, *_split, _T4)
 
 # ---- named constants ------------------------------------------------------------------------------
 j_min, j_max, d_min, d_max, L10 = sympy.symbols("j_min j_max d_min d_max L10", positive=True)
@@ -208,9 +209,9 @@ def _vdot_bounds():
                      "(6): ‖η‖² ≥ ε(a1²‖s1−r1‖² + a2²‖s2−r2‖²)")
     ten = UpperBound("hw", L10 * hh ** ((3 - nu) / 2) * w, condition10, "(10): |ḣ|‖ω‖ ≤ L h^((3−ν)/2)‖ω‖")
     return [
-        TermBound("−2hωᵀDω", -2 * d_min * hh * w**2,
+        TermBound("−2h(t)ωᵀDω", -2 * d_min * hh * w**2,
                   Rayleigh(omega(t), D, factor=-2 * hh, eigenvalue=_eig("D", "min"), norm_squared=w**2)),
-        TermBound("γνh^{ν−1}ḣωᵀJη",
+        TermBound("γνh^{ν−1}ḣ ωᵀJη",
                   gamma * nu * j_max * L10 * sum(a * (eta_h * hh * w**2 + hh**nu * x**2 / eta_h) / 2
                                                  for a, x in zip((a1, a2), e)),
                   CauchySchwarz(h(t).diff(t) * omega(t), eta, (measured(HW), _eta_norm), matrix=J,
@@ -229,7 +230,7 @@ def _vdot_bounds():
         TermBound("−γh^ν‖η‖²", -gamma * eps * hh**nu * (a1**2 * e1**2 + a2**2 * e2**2),
                   Rayleigh(eta, sympy.eye(3), factor=-gamma * hh**nu, eigenvalue=1, norm_squared=l**2),
                   then=(six,)),
-        TermBound("−γh^ν ωᵀJM", gamma * hh**nu * j_max * (a1 + a2) * w**2,
+        TermBound(_T4.text, gamma * hh**nu * j_max * (a1 + a2) * w**2,
                   CauchySchwarz(omega(t), M, (measured(W_), _M_norm), matrix=J, factor=-gamma * hh**nu,
                                 operator_norm=_j_norm)),
     ]
@@ -247,8 +248,8 @@ def chain_steps():
                           role="lower", **common),
             TermwiseBound("V ≤ U", functional, system, "V", upper, _sum(upper), MEASURES, relation="<=",
                           role="upper", **common),
-            TermwiseBound("V̇ ≤ W", functional, system, "Vdot", vdot, _sum(vdot), MEASURES, relation="<=",
-                          derivation=derivation, role="vdot", **common))
+            TermwiseBound("V̇ ≤ W", functional, system, "terms", vdot, _sum(vdot), MEASURES, relation="<=",
+                          terms=VDOT_TERMS, role="vdot", **common))
 
 
 steps = chain_steps()

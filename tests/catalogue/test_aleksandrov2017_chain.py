@@ -50,7 +50,7 @@ def test_steps_proved_at_the_section6_gains(checked):
     lemma = next(tr for tr in vdot.terms if tr.terms == ("−γh^ν‖η‖²",))
     assert lemma.status is Status.CERTIFIED and "Lemma 1: F ≥ 0 for σ ≤ 0.3536" in str([a.to_json() for a in
                                                                                         lemma.applications])
-    ten = next(tr for tr in vdot.terms if tr.terms == ("γνh^{ν−1}ḣωᵀJη",))
+    ten = next(tr for tr in vdot.terms if tr.terms == ("γνh^{ν−1}ḣ ωᵀJη",))
     assert "L = 7/8" in str([a.to_json() for a in ten.applications])  # (10): sup |ḣ|/h = 7/8 for (1+t)^(−7/8)
 
 
@@ -97,7 +97,7 @@ def test_dropped_lemma_term_in_w_refuted_by_the_conclusion(checked, values):
 def test_a_dropped_bound_leaves_a_term_uncovered(values):
     step = chain.steps[2]
     res = step.with_bounds(bounds=step.bounds[:-1]).check(values, search=False)
-    assert res.status is Status.UNDECIDED and "lhs terms without a bound: −γh^ν ωᵀJM" in res.detail
+    assert res.status is Status.UNDECIDED and "lhs terms without a bound: −γh^ν ωᵀJ(a1(ω×s1)×r1 + a2(ω×s2)×r2)" in res.detail
 
 
 def test_flipped_sign_not_proved(values):
@@ -112,7 +112,7 @@ def test_flipped_sign_not_proved(values):
 @pytest.mark.slow
 def test_flipped_sign_refuted_with_a_witness(values):
     step = chain.steps[2]
-    last = step.bounds[-1]  # −γh^ν ωᵀJM ≤ γh^ν‖J‖(a1 + a2)w², stated with the sign flipped
+    last = step.bounds[-1]  # −γh^ν ωᵀJM ≤ γh^ν‖J‖(a1 + a2)w² (M = a1(ω×s1)×r1 + a2(ω×s2)×r2), its sign flipped
     flipped = step.with_bounds(bounds=[type(last)(last.terms, -last.bound, last.rule)], part=last.terms,
                                rhs=-last.bound, witness_seconds=10)
     res = flipped.check(values, budget=30)
