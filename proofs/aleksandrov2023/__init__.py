@@ -54,6 +54,7 @@ from .theorem1_bound import theorem1_bound
 from .corollary1 import corollary1
 from .theorem2 import theorem2
 from .theorem2_example import theorem2_counter, theorem2_example
+from .linear_mu1 import linear_mu1
 
 __all__ = [
     "PAPER",
@@ -69,4 +70,6 @@ __all__ = [
     "theorem1", "theorem1_bound", "corollary1",
     # Theorem 2 (decomposition, section 4)
     "theorem2", "theorem2_example", "theorem2_counter",
+    # the linear case μ = 1 (linearisation, damping threshold)
+    "linear_mu1",
 ]

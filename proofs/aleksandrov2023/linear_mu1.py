@@ -1,0 +1,246 @@
+"""Paper 002, the linear case μ = 1: local stability of (10), (12) at s = r, ω = 0, and the damping it needs.
+
+For μ = 1 the torque of (12) is linear in s, and the linearisation of (10), (12) at the
+target (11) s = r, ω = 0 is
+
+    (10)  δṡ = r × δω,
+    (12)  Θ δω̇ = −F δω − a δs × r + b ∫_{t−τ}^t δs(ξ) × r dξ,
+
+with δs ⊥ r (s stays on the sphere).  In tangent coordinates δs = E y/‖u‖, where
+u ∥ r is rational (r = u/‖u‖, u = (1,1,1) for section 6) and E = (e_1, e_2) is a rational
+basis of u^⊥, the state x = (y, δω) ∈ R⁵ obeys ẋ = A x + ∫_{t−τ}^t D x(ξ) dξ with
+
+    ẏ = E⁺ (u × δω),
+    δω̇ = Θ⁻¹(−F δω + (a/‖u‖²) [u]ₓ E y − (b/‖u‖²) [u]ₓ E ∫ y),
+
+(E⁺ = (EᵀE)⁻¹Eᵀ; (Ey) × u = −[u]ₓEy), rational whenever Θ, F, a, b and u are.  Paper 002
+quotes ref. [30] for this case: stability for |b|τ < a (13) "and a large enough damping".
+Here "large enough" is computed: the threshold h*(a, b, τ) of F = h·I above which the
+linearisation is exponentially stable (the spectral route of :mod:`lkverify.linear`,
+``estimated``), and, where it is stable, a Lyapunov–Krasovskii certificate of the
+hierarchy at the delay τ, re-verified exactly (:mod:`lkverify.linear.hierarchy`).
+Exponential stability of the linearisation gives local exponential stability of (10),
+(12) for μ = 1 (the linearisation principle for retarded equations); a positive spectral
+abscissa gives instability.
+
+Examples
+--------
+>>> from lkverify.proofs.aleksandrov2023.section6 import FIG1
+>>> sys = linearisation(FIG1)
+>>> sys.n, sys.has_distributed, sys.has_discrete
+(5, True, False)
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import sympy
+
+from lkverify import Check, Result, Status
+from lkverify.linear import LinearDelaySystem, certify_delay, rightmost_roots
+
+from .equations import PAPER, P
+from .section6 import FIG1, FIG4
+
+__all__ = ["linearisation", "threshold", "linear_mu1", "FIGURE_GAINS", "plot_threshold", "tangent_basis"]
+
+#: the μ = 1 figures of section 6 and their gains (F = h·I), as the figure items declare them
+FIGURE_GAINS = {1: FIG1, 2: {**FIG1, "b": "-2"}, 4: FIG4}
+#: the dampings scanned for the threshold: a grid on [H_MIN, H_MAX], then bisection
+H_MIN, H_MAX, H_GRID = 0.01, 6.0, 24
+BISECTIONS = 18
+#: Chebyshev degree of the spectral route here (τ ≤ 2)
+NODES = 16
+#: order of the LMI certificate at a stable figure (1 = Wirtinger)
+LMI_ORDER = 1
+
+
+def tangent_basis(r):
+    """(u, E): a rational u ∥ r (r/r_k for the first nonzero r_k) and a rational basis E of u^⊥.
+
+    >>> u, E = tangent_basis(sympy.Matrix([1, 1, 1]) / sympy.sqrt(3))
+    >>> list(u), E.T * u
+    ([1, 1, 1], Matrix([
+    [0],
+    [0]]))
+    """
+    r = sympy.Matrix(r)
+    k = next(i for i in range(3) if r[i] != 0)
+    u = (r / r[k]).applyfunc(sympy.simplify)
+    others = [j for j in range(3) if j != k]
+    cols = []
+    for j in others:
+        e = sympy.zeros(3, 1)
+        e[j] = 1
+        e[k] = -u[j] / u[k]
+        cols.append(e)
+    return u, sympy.Matrix.hstack(*cols)
+
+
+def _cross_matrix(u):
+    return sympy.Matrix([[0, -u[2], u[1]], [u[2], 0, -u[0]], [-u[1], u[0], 0]])
+
+
+def linearisation(values) -> LinearDelaySystem:
+    """The linearisation of (10), (12) with μ = 1 at s = r, ω = 0, in the coordinates (y, δω) ∈ R⁵.
+
+    Parameters
+    ----------
+    values : dict
+        Parameter values of :mod:`.equations` (Θ, F, a, b, τ, r); missing ones take the defaults.
+
+    Returns
+    -------
+    LinearDelaySystem
+        ẋ = A x + ∫_{t−τ}^t D x; the delay τ is not part of the system (it is the h of the analysis).
+    """
+    v = P.resolve(dict(values), use_defaults=True)
+    Theta, F, a, b, r = v["Theta"], v["F"], v["a"], v["b"], v["r"]
+    u, E = tangent_basis(r)
+    Ux = _cross_matrix(u)
+    Epinv = (E.T * E).inv() * E.T
+    n2 = (u.T * u)[0]
+    Ti = Theta.inv()
+    A = sympy.zeros(5, 5)
+    A[:2, 2:] = Epinv * Ux
+    A[2:, :2] = (a / n2) * Ti * Ux * E
+    A[2:, 2:] = -Ti * F
+    D = sympy.zeros(5, 5)
+    D[2:, :2] = -(b / n2) * Ti * Ux * E
+    return LinearDelaySystem(A, kernel=[D], name="(10),(12) linearised, μ = 1")
+
+
+def _damping_family(values):
+    """h ↦ the linearisation with F = h·I, built from one exact linearisation (A − (h − h0)·diag(0, Θ⁻¹))."""
+    base = linearisation(values)
+    v = P.resolve(dict(values), use_defaults=True)
+    h0 = v["F"][0, 0]
+    if v["F"] != h0 * sympy.eye(3):
+        raise ValueError("the damping family needs F = h·I")
+    B = sympy.diag(sympy.zeros(2, 2), v["Theta"].inv())
+
+    def at(h):
+        hq = sympy.Rational(h) if not isinstance(h, sympy.Basic) else h
+        return LinearDelaySystem(base.A - (hq - h0) * B, kernel=list(base.kernel))
+
+    return at
+
+
+def _abscissa(family, h, tau, *, refine=True) -> float:
+    return rightmost_roots(family(h), float(tau), nodes=NODES, count=None if refine else 0).abscissa
+
+
+def threshold(a, b, tau, *, base=None) -> dict:
+    """h*(a, b, τ): the least damping of F = h·I above which (up to H_MAX) the linearisation is stable.
+
+    The spectral abscissa is sampled on a grid of h in [H_MIN, H_MAX]; the last change from
+    unstable to stable is bisected.  ``estimated`` (floating point).
+
+    Returns
+    -------
+    dict
+        ``h_star`` (None when unstable at H_MAX; H_MIN when stable on the whole grid) and
+        ``stable_at_max``.
+
+    Examples
+    --------
+    >>> round(threshold(2, 2, sympy.Rational(9, 10))["h_star"], 3) < 0.7      # Fig. 1's gains: 0.7 suffices
+    True
+    """
+    values = dict(base or FIG1)
+    values.update(a=a, b=b, tau=tau)
+    family = _damping_family(values)
+    grid = np.geomspace(H_MIN, H_MAX, H_GRID)
+    ab = [_abscissa(family, h, tau, refine=False) for h in grid]
+    if ab[-1] >= 0:
+        return {"h_star": None, "stable_at_max": False}
+    k = next((i for i in range(len(grid) - 1, -1, -1) if ab[i] >= 0), None)
+    if k is None:
+        return {"h_star": float(grid[0]), "stable_at_max": True}
+    lo, hi = grid[k], grid[k + 1]
+    for _ in range(BISECTIONS):
+        mid = (lo + hi) / 2
+        if _abscissa(family, mid, tau) < 0:
+            hi = mid
+        else:
+            lo = mid
+    return {"h_star": float(hi), "stable_at_max": True}
+
+
+def _figure_rows(number: int) -> list[Result]:
+    gains = FIGURE_GAINS[number]
+    v = P.resolve(dict(gains), use_defaults=True)
+    h, a, b, tau = v["F"][0, 0], v["a"], v["b"], v["tau"]
+    sys = linearisation(gains)
+    sp = rightmost_roots(sys, float(tau), nodes=NODES)
+    th = threshold(a, b, tau, base=gains)
+    hs = th["h_star"]
+    where = (f"unstable up to h = {H_MAX}" if hs is None else
+             f"stable for every h in [{H_MIN}, {H_MAX}] (h* ≤ {H_MIN})" if hs <= H_MIN else
+             f"h* = {hs:.4f}, {'below' if h < hs else 'above'} the figure's h = {h}")
+    stable = sp.abscissa < 0
+    rows = [Result("linear", f"Fig. {number}: linearisation at s = r, ω = 0 (μ = 1)", Status.ESTIMATED,
+                   {"value": sp.abscissa, "h": float(h), "h_star": hs},
+                   f"a = {a}, b = {b}, τ = {tau}, F = {h}·I: spectral abscissa {sp.abscissa:.4g} → "
+                   f"{'exponentially stable' if stable else 'unstable'} (locally, for (10),(12) with μ = 1); "
+                   f"threshold {where}; (13) |b|τ < a {'holds' if abs(b) * tau < a else 'fails'}; {sp.detail}")]
+    if stable:
+        res = certify_delay(sys, tau, order=LMI_ORDER)
+        rows.append(Result("linear", f"Fig. {number}: LK certificate at τ = {tau}", res.status, float(tau),
+                           res.detail))
+    return rows
+
+
+def _check(values) -> list[Result]:
+    rows = []
+    for number in FIGURE_GAINS:
+        rows += _figure_rows(number)
+    return rows
+
+
+def plot_threshold(path, *, a=2, taus=("0.5", "0.9", "1.5"), bs=None):
+    """h*(a, b, τ) over b for several τ, with the Fig. 1 and Fig. 2 gains (h = 0.7) placed on it.
+
+    The (13) boundaries b = ±a/τ are dashed.  Returns the path written.
+
+    >>> import os, tempfile
+    >>> plot_threshold(os.path.join(tempfile.mkdtemp(), "h.png"), taus=("0.9",), bs=[-2, 2]).endswith("h.png")
+    True
+    """
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    bs = np.linspace(-2.5, 2.5, 21) if bs is None else np.asarray(bs, dtype=float)
+    fig, ax = plt.subplots(figsize=(8, 4.8))
+    for k, tau in enumerate(taus):
+        tq = sympy.Rational(tau)
+        hs = [threshold(sympy.Rational(a), sympy.Rational(str(b)), tq)["h_star"] for b in bs]
+        ys = [np.nan if x is None else x for x in hs]
+        ax.plot(bs, ys, "-o", ms=3, color=f"C{k}", label=f"h*(a = {a}, b, τ = {tau})")
+        for sgn in (-1, 1):
+            ax.axvline(sgn * a / float(tq), color=f"C{k}", ls=":", lw=0.8)
+    for number, marker in ((1, "s"), (2, "X")):
+        g = P.resolve(dict(FIGURE_GAINS[number]), use_defaults=True)
+        ax.plot([float(g["b"])], [float(g["F"][0, 0])], marker, color="k", ms=9,
+                label=f"Fig. {number}: b = {g['b']}, h = {g['F'][0, 0]}")
+    ax.set_xlabel("b")
+    ax.set_ylabel("damping threshold h* (F = h·I)")
+    ax.set_yscale("log")
+    ax.set_title(f"paper 002, μ = 1: stable above h* (dotted: |b|τ = a, the edge of (13))")
+    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1), fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return str(path)
+
+
+linear_mu1 = Check("linear_mu1", parameters=P, checks=[_check], paper=PAPER, relevant=(),
+                   title="μ = 1: the linearisation at the Fig. 1, 2, 4 gains decided, the damping threshold h*(a, b, τ)")
+
+
+if __name__ == "__main__":  # pragma: no cover - python -m …linear_mu1 FIGURE.png
+    import sys
+    print(plot_threshold(sys.argv[1] if len(sys.argv) > 1 else "h_star.png"))
