@@ -11,9 +11,12 @@ objects the identities are proved along:
   φ(0) = 0, ε(0) = 0 — e → 0, ω → ω_d, and θ_r → θ (Theorem 2 (a)).
 * **Theorem 2, near s = (−c1, c2, −c3)**: θ_e = ε = 0 there (Theorem 2 (в): unstable).
 
+The runs end at t = 20 (rtol 1e-6) so that the bare report stays short (about 6 s for the four runs);
+``lkverify simulate zaremba1997.example --t-end 60`` runs them longer.
+
 Claims (status ``simulated``): the tracking runs converge (Theorem 1 slowly at this instance:
-‖e‖ ≈ 0.1 at t = 30 while θ_r drifts far from θ, even through negative "inertias" — nothing in
-Theorem 1 keeps θ_r near θ; Theorem 2's ‖e‖ is 1e-4); θ_r stays bounded; the composite run's
+‖e‖ ≈ 0.15 at t = 20 while θ_r drifts far from θ, even through negative "inertias" — nothing in
+Theorem 1 keeps θ_r near θ; Theorem 2's ‖e‖ is 2e-3); θ_r stays bounded; the composite run's
 θ_r approaches θ, at an observed exponential rate compared with the γ/2 that (3.12) gives for
 ‖θ_e‖ (γ = min{λ_c, λ_cλ1/2, 2} with λ1 the smallest λ(t) of the run); both runs started 0.01 rad
 from the other equilibrium leave it (distance 0.014 → past 0.5) and reach the programmed motion.
@@ -200,17 +203,17 @@ example = Example(
     title="Paper 004: adaptive tracking with unknown inertia, Theorems 1 and 2",
     runs=[Run(T1, system1, {}, INITIAL), Run(T1_OTHER, system1, {}, NEAR_OTHER),
           Run(T2, system2_sim, {}, {**INITIAL, **_COMPOSITE}), Run(T2_OTHER, system2_sim, {}, {**NEAR_OTHER, **_COMPOSITE})],
-    t_end=30,
+    t_end=20,
     series=[Series("‖θ_r − θ‖", lambda st: np.linalg.norm(st["theta_r"] - np.array(_THETA), axis=1)),
             Series("θ_r,1", lambda st: st["theta_r"][:, 0]), Series("θ_r,2", lambda st: st["theta_r"][:, 1]),
             Series("θ_r,3", lambda st: st["theta_r"][:, 2]),
             Series("√Σ‖sᵢ − cᵢ‖²", lambda st: np.sqrt(sum(np.sum((st[f"s{i + 1}"] - np.eye(3)[i]) ** 2, axis=1)
                                                           for i in range(3))))],
     distance=lambda st: np.sqrt(sum(np.sum((st[f"s{i + 1}"] - np.eye(3)[i]) ** 2, axis=1) for i in range(3))),
-    claims=[Tracks(T1, tol=0.2), EstimatesBounded(T1), Leaves(T1_OTHER), Tracks(T2), EstimatesBounded(T2),
+    claims=[Tracks(T1, tol=0.2), EstimatesBounded(T1), Leaves(T1_OTHER), Tracks(T2, tol=1e-2), EstimatesBounded(T2),
             EstimatesConverge(T2, ratio=0.5), Leaves(T2_OTHER)],
     ylabel="θ_r and the attitude error",
     samples=601,
-    step=StepControl(rtol=1e-7, atol=1e-9),
+    step=StepControl(rtol=1e-6, atol=1e-8),
     paper=PAPER,
 )
