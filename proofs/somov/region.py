@@ -1,0 +1,203 @@
+"""The region of attraction of paper 003's closed loop (3), (11): certified, and against a simulated grid.
+
+From the comparison system of :mod:`.comparison`, D⁺‖V‖ ≤ φ(‖V‖) with φ(r) = −αr + (3/β)max(0, g(r)),
+g(r) = k0r + 2k0r² + 6k0r³ − a_m/4:
+
+* r0, the positive root of g: on ‖V‖ ≤ r0 the saturation is inactive (‖u_lin‖₂ ≤ a_m there), the
+  loop is (10) and V̇ = AV;
+* ρ*, the smallest root of ψ(r) = −αr + (3/β)g(r) above r0: φ < 0 on (0, ρ*) (φ = −αr on (0, r0],
+  ψ(r0) = −αr0 < 0 and ψ has no root in [r0, ρ*)), so {‖V‖ < ρ*} is positively invariant and
+  ‖V‖ → 0, hence σ → 0, σ̇ → 0 and ω = D(σ)σ̇ → 0: the limits (5).  r0 and ρ* are algebraic numbers
+  (roots of cubics with the run's rational coefficients), the sign conditions decided by exact root
+  isolation: status ``exact``.
+* In the initial data (the text's |σ(t0)|, ‖ω(t0)‖): ‖V‖² = Q₁₁|σ|² + 2Q₁₂σ·σ̇ + Q₂₂|σ̇|² (Q of
+  :mod:`.comparison`) with |σ̇| = ¼(1 + |σ|²)‖ω‖, so every initial state with
+  Q₁₁s² + 2|Q₁₂|s·y + Q₂₂y² < ρ*², s = |σ(t0)|, y = ¼(1 + s²)‖ω(t0)‖, is attracted.
+
+``lkverify constants somov.region`` simulates the closed loop (3), (11) on a grid of (|σ0|, ‖ω0‖)
+(four direction pairs each, :mod:`.grid`) and compares: the certified set must lie inside the
+converged one (status ``simulated``), and the ratio of their areas in the (|σ0|, ‖ω0‖) rectangle is
+reported (``estimated``).  At the catalogued instance the certified set is |σ0| < 0.078 (Φ0 < 18°)
+at ω0 = 0 — the majorant is crude — while every sampled state with |σ0| ≤ 1 converges.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import sympy
+
+from lkverify import Check, Report, Result, Status
+
+from .comparison import channel_form, majorant
+from .equations import PAPER, P
+from .grid import run_grid, run_points
+
+__all__ = ["CertifiedRegion", "certified_region", "region", "RegionConstants", "W_RANGE"]
+
+
+@dataclasses.dataclass(frozen=True)
+class CertifiedRegion:
+    """r0, ρ* (exact algebraic numbers) and the initial-data form (Q₁₁, |Q₁₂|, Q₂₂)."""
+
+    r0: sympy.Expr
+    rho: sympy.Expr
+    Q: tuple
+
+    def contains(self, s, w):
+        """The certified predicate on (|σ0|, ‖ω0‖) (numpy, floats: for grids and figures)."""
+        q11, q12, q22 = (float(x) for x in self.Q)
+        y = (1 + np.asarray(s) ** 2) * np.asarray(w) / 4
+        return q11 * s ** 2 + 2 * q12 * s * y + q22 * y ** 2 < float(self.rho) ** 2
+
+    @property
+    def s_max(self):
+        """|σ0| bound at ω0 = 0: ρ*/√Q₁₁."""
+        return self.rho / sympy.sqrt(self.Q[0])
+
+    @property
+    def w_max(self):
+        """‖ω0‖ bound at σ0 = 0: 4ρ*/√Q₂₂."""
+        return 4 * self.rho / sympy.sqrt(self.Q[2])
+
+    def w_boundary(self, s):
+        """The largest certified ‖ω0‖ at |σ0| = s (0 beyond s_max)."""
+        q11, q12, q22 = (float(x) for x in self.Q)
+        rho2 = float(self.rho) ** 2
+        s = np.asarray(s, float)
+        disc = (q12 * s) ** 2 - q22 * (q11 * s ** 2 - rho2)
+        y = np.where(disc > 0, (-q12 * s + np.sqrt(np.maximum(disc, 0))) / q22, 0.0)
+        return np.maximum(y, 0) * 4 / (1 + s ** 2)
+
+
+def _smallest_root_above(poly, r, lo):
+    roots = [x for x in sympy.Poly(poly, r).real_roots() if x > lo]
+    return min(roots, key=lambda x: sympy.N(x, 30)) if roots else None
+
+
+def certified_region(v) -> CertifiedRegion:
+    """r0, ρ* and Q at resolved values (exact)."""
+    r, g, psi = majorant(v)
+    r0 = _smallest_root_above(g, r, 0)
+    rho = _smallest_root_above(psi, r, r0)
+    Q = channel_form(v)
+    return CertifiedRegion(r0, rho, (Q[0, 0], abs(Q[0, 1]), Q[1, 1]))
+
+
+def _region_rows(v) -> list:
+    r, g, psi = majorant(v)
+    reg = certified_region(v)
+    ok = reg.r0 is not None and reg.rho is not None
+    rows = [Result("constant", "r0 (saturation inactive)", Status.EXACT, {"value": float(reg.r0), "exact": str(reg.r0)},
+                   f"g(r) = {sympy.sstr(g)} has the single positive root r0 = {float(reg.r0):.6g}: on ‖V‖ ≤ r0 the "
+                   f"bound on ‖p‖ is 0, i.e. ‖D(v − a)‖₂ ≤ a_m and SC is inactive (exact root)"),
+            Result("region", "rho* (comparison system)", Status.EXACT if ok else Status.FAILED,
+                   {"value": float(reg.rho) if reg.rho is not None else None, "exact": str(reg.rho)},
+                   f"ψ(r) = −αr + (3/β)g(r) = {sympy.sstr(sympy.expand(psi))}: ψ(r0) = −αr0 < 0 and its first root "
+                   f"above r0 is ρ* = {float(reg.rho):.6g} (ψ(r0) = −αr0 since g(r0) = 0; every real root of ψ isolated exactly): "
+                   f"φ < 0 on (0, ρ*), so ‖V(t0)‖ < ρ* ⇒ ‖V(t)‖ ↓ 0 and (5)")]
+    smax, wmax = reg.s_max, reg.w_max
+    rows.append(Result("region", "certified initial data", Status.EXACT,
+                       {"s_max": float(smax), "Phi_max_deg": float(4 * sympy.atan(smax) * 180 / sympy.pi),
+                        "w_max": float(wmax), "Q": [str(x) for x in reg.Q]},
+                       f"attracted if Q₁₁s² + 2|Q₁₂|s·y + Q₂₂y² < ρ*², s = |σ(t0)|, y = ¼(1+s²)‖ω(t0)‖, "
+                       f"(Q₁₁, |Q₁₂|, Q₂₂) = ({', '.join(sympy.sstr(x) for x in reg.Q)}): at ω0 = 0 |σ0| < "
+                       f"{float(smax):.4g} (Φ0 < {float(4 * sympy.atan(smax) * 180 / sympy.pi):.3g}°), at σ0 = 0 "
+                       f"‖ω0‖ < {float(wmax):.4g} rad/s (a_m = {v['a_m']})"))
+    return rows
+
+
+#: the sampled rectangle of ‖ω0‖, in multiples of the certified ‖ω0‖ bound at σ0 = 0
+W_RANGE = 10.0
+#: points on the certified boundary (just inside it) simulated as well
+N_BOUNDARY = 16
+
+
+class RegionConstants:
+    """``lkverify constants somov.region``: the certified region against a simulated grid (goals, run, plot)."""
+
+    goals = ["default"]
+
+    def __init__(self, n_s=16, n_w=16, t_end=300.0, dt=1.0):
+        self.n_s, self.n_w, self.t_end, self.dt = n_s, n_w, t_end, dt
+
+    def run(self, item_name, values, shown, *, budget=150.0, progress=None, goal=None):
+        rows = _region_rows(values)
+        reg = certified_region(values)
+        s = np.linspace(0.0, 1.0, self.n_s)
+        w = np.linspace(0.0, W_RANGE * float(reg.w_max), self.n_w)
+        if progress:
+            progress(f"{item_name}: {self.n_s}×{self.n_w} initial states × 4 directions to t = {self.t_end:g}")
+        grid = run_grid(values, s, w, t_end=self.t_end, dt=self.dt)
+        rows += grid_rows(reg, grid)
+        sb = np.linspace(0.0, 0.999 * float(reg.s_max), N_BOUNDARY)
+        wb = 0.999 * reg.w_boundary(sb)
+        ok = run_points(values, sb, wb, t_end=self.t_end, dt=self.dt)
+        rows.append(Result("simulation", "certified boundary converges", Status.SIMULATED if ok.all() else Status.FAILED,
+                           {"points": N_BOUNDARY, "not_converged": int((~ok).sum())},
+                           f"{int(ok.sum())} of {N_BOUNDARY} initial data just inside the certified boundary "
+                           f"(|σ0| from 0 to {0.999 * float(reg.s_max):.3g}, 4 direction pairs each) converge"))
+        bad = [r.name for r in rows if not r.status.holds]
+        verdict = "every check holds" if not bad else f"failed: {', '.join(bad)}"
+        return Report(item_name, dict(shown), tuple(rows), verdict), {"grid": grid, "region": reg, "values": values,
+                                                                     "boundary": (sb, wb)}
+
+    def plot(self, extra, path, *, values=None):
+        from matplotlib.figure import Figure
+
+        grid, reg = extra["grid"], extra["region"]
+        fig = Figure(figsize=(7.5, 5.0), layout="constrained")
+        ax = fig.subplots()
+        S, Wg = np.meshgrid(grid.s, grid.w, indexing="ij")
+        ax.scatter(S[grid.converged], Wg[grid.converged], s=14, c="tab:green", label="converged (all 4 directions)")
+        ax.scatter(S[~grid.converged], Wg[~grid.converged], s=18, marker="x", c="tab:red", label="not converged")
+        ss = np.linspace(0, float(reg.s_max), 400)
+        ax.fill_between(ss, 0, reg.w_boundary(ss), color="tab:blue", alpha=0.35, label="certified (comparison system)")
+        ax.set_xlabel(r"$|\sigma(t_0)|$")
+        ax.set_ylabel(r"$\|\omega(t_0)\|$ (rad/s)")
+        v = extra["values"]
+        ax.set_title(f"Paper 003: region of attraction of (3), (11); α = {v['alpha']}, β = {v['beta']}, "
+                     f"a_m = {v['a_m']}; runs to t = {grid.t_end:g}", fontsize=9)
+        b = extra.get("boundary")
+        if b is not None:
+            ax.plot(b[0], b[1], ".", ms=4, c="navy", label="simulated on the certified boundary")
+        ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2)
+        ax.grid(alpha=0.3)
+        fig.savefig(path, dpi=120)
+
+
+_trapezoid = getattr(np, "trapezoid", None) or getattr(np, "trapz")
+
+
+def grid_rows(reg, grid) -> list:
+    """Containment of the certified set in the converged grid points, and the area ratio."""
+    S, Wg = np.meshgrid(grid.s, grid.w, indexing="ij")
+    inside = reg.contains(S, Wg)
+    missed = inside & ~grid.converged
+    ds, dw = grid.s[1] - grid.s[0], grid.w[1] - grid.w[0]
+    fine_s = np.linspace(0, grid.s[-1], 801)
+    cert_area = float(_trapezoid(np.minimum(reg.w_boundary(fine_s), grid.w[-1]), fine_s))
+    sim_area = float(grid.converged.sum() * ds * dw)  # cells of the converged grid points
+    total = float(grid.s[-1] * grid.w[-1])
+    ratio = cert_area / sim_area if sim_area else float("nan")
+    rows = [Result("simulation", "certified set inside the converged grid", Status.FAILED if missed.any() else
+                   Status.SIMULATED, {"grid_points_certified": int(inside.sum()), "missed": int(missed.sum())},
+                   f"{int(inside.sum())} of the {inside.size} grid points lie in the certified set and every one of "
+                   f"them converged (4 direction pairs each, RK4 dt = {grid.dt:g} to t = {grid.t_end:g})"
+                   if not missed.any() else f"{int(missed.sum())} certified grid points did NOT converge"),
+            Result("simulation", "area ratio certified/converged", Status.ESTIMATED,
+                   {"ratio": ratio, "certified_area": cert_area, "converged_area": sim_area, "rectangle": total,
+                    "converged_fraction": float(grid.converged.mean())},
+                   f"in |σ0| ∈ [0, 1], ‖ω0‖ ∈ [0, {grid.w[-1]:.3g}]: certified area {cert_area:.3g}, converged "
+                   f"{sim_area:.3g} ({100 * grid.converged.mean():.0f} % of the grid points): ratio {ratio:.3g}")]
+    return rows
+
+
+def _check(v) -> list:
+    return _region_rows(v)
+
+
+region = Check("region", parameters=P, checks=[_check], paper=PAPER, relevant=("alpha", "beta", "a_m"),
+               constants=RegionConstants(),
+               title="Region of attraction of (3), (11) from the comparison system (exact), against a simulated grid")
