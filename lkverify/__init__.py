@@ -11,6 +11,8 @@ The pipeline is in the subpackages, one per stage (data flows one way):
     and form positivity, LMIs, decay models, regions and envelopes;
 :mod:`lkverify.simulate`
     the same system integrated, experiments and envelope checks;
+:mod:`lkverify.linear`
+    linear delay systems: spectra, stability intervals, LK LMI hierarchies with exact certificates;
 :mod:`lkverify.catalogue`
     items (theorems, checks, examples) and the loading of proof files;
 :mod:`lkverify.report` and :mod:`lkverify.cli`
@@ -41,6 +43,8 @@ from .symbolic.derivative import Block, DerivativeResult, derivative_along
 from .symbolic.identity import IdentityResult, TermDifference, check_identity
 from .catalogue.examples import Example
 from .certify.constants import ConstantsJob, Template
+from .linear import (LinearDelaySystem, certified_interval, certify_delay, linear_report, rightmost_roots,
+                     stability_intervals)
 from .simulate import (BoundedNotAttractive, Converges, DoesNotConverge, EnvelopeSpec, FasterThan, FromValues, Run,
                        Sensitive, Series, SmootherThan, StepControl)
 
@@ -57,6 +61,9 @@ __all__ = [
     # examples, runs and claims about them (simulate), constants jobs (certify)
     "BoundedNotAttractive", "ConstantsJob", "Converges", "DoesNotConverge", "EnvelopeSpec", "Example", "FasterThan",
     "FromValues", "Run", "Sensitive", "Series", "SmootherThan", "StepControl", "Template",
+    # linear delay systems (linear)
+    "LinearDelaySystem", "certified_interval", "certify_delay", "linear_report", "rightmost_roots",
+    "stability_intervals",
 ]
 
 __version__ = "0.1.0"
