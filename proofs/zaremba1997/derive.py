@@ -25,7 +25,7 @@ from sympy.core.function import AppliedUndef
 from sympy.polys.domains import QQ
 from sympy.polys.rings import PolyElement, ring
 
-from lkverify import Result, Status, t
+from lkverify import Result, Status
 
 __all__ = ["plain", "derivative", "compare", "cayley", "witness_point", "poly_ring", "to_ring"]
 

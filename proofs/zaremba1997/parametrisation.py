@@ -21,7 +21,7 @@ from lkverify import Check, Result, Status, cross, dot, t
 
 from .derive import compare, derivative, plain
 from .equations import (PAPER, EDOT, P, Lam, M, Y, c1, c2, c3, e, k1, k2, k3, omega, omega_e, s1, s2, s3, system1,
-                        theta, v, wd)
+                        theta, v)
 
 __all__ = ["parametrisation", "regressor_results", "lemma_results"]
 

@@ -21,8 +21,7 @@ from lkverify import Check, Result, Status, cross, dot, quad, t
 from lkverify.certify.matrices import matrix_positive_definite
 
 from .derive import compare, derivative, plain
-from .equations import (PAPER, Gamma, Kd, Lam, M, P, Y, k1, k2, k3, omega, omega_r, omega_r_dot, system1,
-                        theta, theta_r, v)
+from .equations import PAPER, Gamma, Kd, M, P, Y, omega, omega_r, omega_r_dot, system1, theta, theta_r, v
 
 __all__ = ["theorem1", "functional1", "theorem1_results", "hypotheses"]
 
