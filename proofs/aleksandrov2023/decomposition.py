@@ -217,8 +217,8 @@ def decide_7(substitution) -> ConditionResult:
     """(7) A ẋ = −Bx asymptotically stable ⇔ −A⁻¹B Hurwitz: exact Routh–Hurwitz, then P1 verified exactly.
 
     ``failed`` names an eigenvalue of −A⁻¹B with Re λ ≥ 0; ``exact`` gives the rational P1 ≻ 0 with
-    (−A⁻¹B)ᵀP1 + P1(−A⁻¹B) ≺ 0, i.e. V1 = (xᵀP1x)^{ν1/2} and m14 = (ν1/2)·λ_min(MᵀP1 + P1M)/λ_max(P1)^{…}
-    (for ν1 = 2: m14 = λ_min(MᵀP1 + P1M), M = A⁻¹B).
+    (−A⁻¹B)ᵀP1 + P1(−A⁻¹B) ≺ 0: V1 = xᵀP1x (ν1 = 2) has (∂V1/∂x)ᵀA⁻¹Bx ≥ m14‖x‖² with
+    m14 = λ_min(MᵀP1 + P1M), M = A⁻¹B (the margin).
     """
     m = instance_matrices(substitution)
     if m["A"].det() == 0 or m["B"].det() == 0:
@@ -232,8 +232,8 @@ def decide_7(substitution) -> ConditionResult:
     if res.status.is_proof:
         P1 = res.certificate
         return dataclasses.replace(res, detail=(
-            f"−A⁻¹B = {(-M).tolist()} is Hurwitz (exact Routh–Hurwitz test); V1 = (xᵀP1x)^{{ν1/2}} with the rational "
-            f"P1 = {P1.tolist()} ≻ 0 and (A⁻¹B)ᵀP1 + P1A⁻¹B ≻ 0 with λ_min ≥ {float(res.margin.lo):.6g} "
+            f"−A⁻¹B = {(-M).tolist()} is Hurwitz (exact Routh–Hurwitz test); V1 = (xᵀP1x)^{{ν1/2}} with "
+            f"the rational P1 = {P1.tolist()} ≻ 0 and (A⁻¹B)ᵀP1 + P1A⁻¹B ≻ 0 with λ_min ≥ {float(res.margin.lo):.6g} "
             f"({res.status}, exact LDLᵀ in fractions; P1 found by Clarabel and re-verified)"))
     return res
 
@@ -316,8 +316,9 @@ def decide_8(substitution) -> ConditionResult:
     if ray is not None:
         e, _enc, how = ray
         return ConditionResult(name, Status.FAILED, witness=e, detail=(
-            f"not asymptotically stable: ẏ = −G(y), G(y) = B⁻¹(Q(y) + τD(y)) = {list(G)}, has the invariant ray "
-            f"y = s·e with G(e) = λe, λ ≤ 0 ({how}), along which ṡ = −λs³ ≥ 0: solutions from it do not tend to 0"))
+            f"not asymptotically stable: ẏ = −G(y), G(y) = B⁻¹(Q(y) + τD(y)) = {list(G)}, has the invariant "
+            f"ray y = s·e with G(e) = λe, λ ≤ 0 ({how}), along which ṡ = −λs^μ ≥ 0: solutions from it do not "
+            f"tend to 0"))
     Pf, status, mest = _lp_P2(G, yv)
     if Pf is None:
         return ConditionResult(name, Status.UNDECIDED, detail=(
