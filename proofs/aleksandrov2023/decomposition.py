@@ -36,7 +36,13 @@ The decisions (each returns a :class:`~lkverify.certify.conditions.ConditionResu
   linear programme on sampled directions (cvxpy + Clarabel), rounded to rationals, then P2 ≻ 0
   exactly and yᵀP2B⁻¹(Q(y) + τD(y)) > 0 on ‖y‖ = 1 certified in arb (never the solver status);
   a failure is an escaping invariant ray (n = 2), certified;
-* :func:`decide_order` — 1 < (ν2 + μ − 1)/ν1 < μ, exact.
+* :func:`decide_order` — 1 < (ν2 + μ − 1)/ν1 < μ, exact;
+* :func:`derived_order_condition` — the same condition derived from the exponents of the cross terms of
+  the printed V̇ estimate (:data:`PRINTED_CROSS_TERMS`): each must be of higher order than the negative
+  terms for Young's inequality to absorb it near 0.
+
+:data:`system1` is (1) in q, q̇; :data:`system_P4` is (П.4) as printed, in x, y; :func:`printed_P4` states
+the printed rows as claims derived along (1).
 """
 
 from __future__ import annotations
