@@ -20,10 +20,10 @@ import sympy
 from lkverify import Check, Result, Status, cross, dot, quad, t
 from lkverify.certify.matrices import matrix_positive_definite
 
-from .derive import compare, derivative, plain
+from .derive import compare, derivative, plain, poly_ring, to_ring
 from .equations import PAPER, Gamma, Kd, M, P, Y, omega, omega_r, omega_r_dot, system1, theta, theta_r, v
 
-__all__ = ["theorem1", "functional1", "theorem1_results", "hypotheses"]
+__all__ = ["theorem1", "functional1", "theorem1_results", "hypotheses", "general_result"]
 
 
 def _sub(values):
@@ -75,12 +75,46 @@ def theorem1_results(values, *, system=system1) -> list:
     ]
 
 
+def general_result():
+    """(2.9) for every M = diag(A, B, C), K_d, Γ (symmetric, symbolic) and every ω_r, ω̇_r (exact).
+
+    One level up, as in :class:`~.theorem2.Abstract`: ω, θ_r are the states, ω_r and its rate ω̇_r
+    signals (symbols; d/dt of the state function ω_r is the ω̇_r the control uses, by ė of
+    ``zaremba1997.parametrisation``); Γ⁻¹ = adj(Γ)·DINV, reduced with det(Γ)·DINV = 1.
+    """
+    from .theorem2 import _DINV, reduce_det
+
+    w, wr, wrd, th = (sympy.Matrix(sympy.symbols(f"{n}1:4", real=True)) for n in ("w", "wr", "wrd", "th"))
+    Mg = sympy.diag(*sympy.symbols("A B C", positive=True))
+    sym = lambda n: sympy.Matrix(3, 3, lambda i, j: sympy.Symbol(f"{n}_{min(i, j) + 1}{max(i, j) + 1}", real=True))
+    Kg, Gg = sym("Kd"), sym("Gamma")
+    vv = w - wr
+    th_e = th - sympy.Matrix([Mg[i, i] for i in range(3)])
+    M_r = sympy.diag(*th)
+    u = M_r * wrd + cross(wr, M_r * w) - Kg * vv                                       # (2.7)
+    wdot = Mg.inv() * (-cross(w, Mg * w) + u)                                          # (1.3)
+    thdot = -Gg * Y(w, wr, wrd).T * vv                                                 # (2.8)
+    V = dot(vv, Mg * vv) / 2 + (th_e.T * Gg.adjugate() * th_e)[0, 0] * _DINV / 2      # (2.6)
+    # the mass M of (1.3): ∂V/∂ωᵢ·ω̇ᵢ with ω̇ᵢ = Fᵢ/Mᵢᵢ, the division done exactly term by term
+    w_part = [sympy.cancel(V.diff(w[i]) * wdot[i]) for i in range(3)]
+    R = poly_ring([V, *w_part, *thdot], extra=[_DINV])
+    Vr = to_ring(R, V)
+    g = {str(x): x for x in R.gens}
+    total = sum((to_ring(R, x) for x in w_part), R.zero)
+    for xs, rs, name in ((wr, wrd, "wr"), (th, thdot, "th")):
+        for i in range(3):
+            total += Vr.diff(g[f"{name}{i + 1}"]) * to_ring(R, rs[i])
+    Vdot = reduce_det(total, to_ring(R, Gg.det()))
+    return compare("(2.9) for every M = diag(A, B, C), K_d, Γ", [("−vᵀK_d v", -dot(vv, Kg * vv))],
+                   [("V̇ derived", Vdot)], reference="(2.9), every parameter symbolic", R=R)
+
+
 def _check(values):
     out = hypotheses(values)
     out.append(Result("bound", "V ≥ 0: ½vᵀMv + ½θ_eᵀΓ⁻¹θ_e (2.6)",
                       Status.EXACT if all(r.status is Status.EXACT for r in out[1:3]) else Status.FAILED, None,
                       "a sum of two positive-definite forms (M ≻ 0, Γ⁻¹ ≻ 0 as Γ ≻ 0), positive definite in (v, θ_e)"))
-    return out + theorem1_results(values)
+    return out + theorem1_results(values) + [general_result()]
 
 
 theorem1 = Check("theorem1", parameters=P, checks=[_check], paper=PAPER,

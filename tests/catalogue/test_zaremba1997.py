@@ -178,3 +178,8 @@ def test_example_simulations():
     ex = importlib.import_module("lkverify.proofs.zaremba1997.example").example
     rep = ex.run()
     assert rep.exit_code == 0, rep.as_text()
+
+
+def test_theorem1_identity_for_every_parameter():
+    r = th1.general_result()
+    assert r.status is Status.EXACT and "every parameter symbolic" in r.detail
