@@ -23,6 +23,25 @@ Exponential stability of the linearisation gives local exponential stability of 
 (12) for μ = 1 (the linearisation principle for retarded equations); a positive spectral
 abscissa gives instability.
 
+Findings (section 6 data, Θ = diag(5, 6, 4), r = (1,1,1)/√3):
+
+* Fig. 1 (a = 2, b = 2, τ = 0.9, h = 0.7): spectral abscissa −0.143; stable for every
+  damping tried (h* ≤ 0.01); Wirtinger certificate at τ = 0.9, exact.  Agrees with the
+  simulated convergence.
+* Fig. 2 (b = −2): abscissa +0.0061, unstable; h* = 0.766 — the printed h = 0.7 is 9 %
+  short of "large enough".  Agrees with the simulated non-convergence (the text's "(13)
+  holds but h is not large").
+* Fig. 4 (a = 0.6, b = −0.6, h = 0.2): abscissa +0.0041, unstable; h* = 0.237.  The
+  equilibrium is linearly unstable, consistent with the non-convergence of the figure.
+* (13) is not necessary for μ = 1: at Fig. 6's gains with μ = 1 (a = 0, b = −1, τ = 1,
+  h = 1) the linearisation is stable (h* = 0.487) and certified by an exact Wirtinger LMI,
+  although |b|τ = 1 > 0 = a.  Remark 3's contrast ("unlike the linear case, … a = 0,
+  b < 0") holds for what (13) guarantees, not for the linear system itself.
+* For b > 0 the threshold vanishes while bτ < a; for bτ > a no damping stabilises (the
+  static stiffness a − bτ of the linearisation is negative): the linear boundary on the
+  b > 0 side is (14), not (13).  For b < 0, h* grows with |b| and τ (figure:
+  ``python -m lkverify.proofs.aleksandrov2023.linear_mu1 h_star.png``).
+
 Examples
 --------
 >>> from lkverify.proofs.aleksandrov2023.section6 import FIG1
@@ -42,12 +61,14 @@ from lkverify import Check, Result, Status
 from lkverify.linear import LinearDelaySystem, certify_delay, rightmost_roots
 
 from .equations import PAPER, P
-from .section6 import FIG1, FIG4
+from .section6 import FIG1, FIG4, FIG6
 
 __all__ = ["linearisation", "threshold", "linear_mu1", "FIGURE_GAINS", "plot_threshold", "tangent_basis"]
 
 #: the μ = 1 figures of section 6 and their gains (F = h·I), as the figure items declare them
 FIGURE_GAINS = {1: FIG1, 2: {**FIG1, "b": "-2"}, 4: FIG4}
+#: Remark 3's case a = 0, b < 0 at μ = 1: the Fig. 6 gains (a = 0, b = −1, τ = 1, h = 1) with μ = 1
+REMARK3_LINEAR = {**FIG6, "mu": "1"}
 #: the dampings scanned for the threshold: a grid on [H_MIN, H_MAX], then bisection
 H_MIN, H_MAX, H_GRID = 0.01, 6.0, 24
 BISECTIONS = 18
@@ -135,8 +156,9 @@ def _abscissa(family, h, tau, *, refine=True) -> float:
 def threshold(a, b, tau, *, base=None) -> dict:
     """h*(a, b, τ): the least damping of F = h·I above which (up to H_MAX) the linearisation is stable.
 
-    The spectral abscissa is sampled on a grid of h in [H_MIN, H_MAX]; the last change from
-    unstable to stable is bisected.  ``estimated`` (floating point).
+    The spectral abscissa (eigenvalues of the pseudospectral generator, N = :data:`NODES`) is
+    sampled on a grid of h in [H_MIN, H_MAX]; the last change from unstable to stable is
+    bisected.  ``estimated`` (floating point); the tests check the bracket with Newton-refined roots.
 
     Returns
     -------
@@ -162,7 +184,7 @@ def threshold(a, b, tau, *, base=None) -> dict:
     lo, hi = grid[k], grid[k + 1]
     for _ in range(BISECTIONS):
         mid = (lo + hi) / 2
-        if _abscissa(family, mid, tau) < 0:
+        if _abscissa(family, mid, tau, refine=False) < 0:
             hi = mid
         else:
             lo = mid
@@ -179,7 +201,7 @@ def _figure_rows(number: int) -> list[Result]:
     hs = th["h_star"]
     where = (f"unstable up to h = {H_MAX}" if hs is None else
              f"stable for every h in [{H_MIN}, {H_MAX}] (h* ≤ {H_MIN})" if hs <= H_MIN else
-             f"h* = {hs:.4f}, {'below' if h < hs else 'above'} the figure's h = {h}")
+             f"h* = {hs:.4f}: the figure's h = {h} is {'below' if h < hs else 'above'} it")
     stable = sp.abscissa < 0
     rows = [Result("linear", f"Fig. {number}: linearisation at s = r, ω = 0 (μ = 1)", Status.ESTIMATED,
                    {"value": sp.abscissa, "h": float(h), "h_star": hs},
@@ -193,11 +215,27 @@ def _figure_rows(number: int) -> list[Result]:
     return rows
 
 
+def _remark3_rows() -> list[Result]:
+    """Fig. 6's gains (a = 0, b = −1, τ = 1, h = 1) with μ = 1: stable linearisation, certified."""
+    v = P.resolve(dict(REMARK3_LINEAR), use_defaults=True)
+    sys = linearisation(REMARK3_LINEAR)
+    sp = rightmost_roots(sys, float(v["tau"]), nodes=NODES)
+    rows = [Result("linear", "Fig. 6 gains at μ = 1 (a = 0, b = −1): linearisation", Status.ESTIMATED, sp.abscissa,
+                   f"spectral abscissa {sp.abscissa:.4g}: {'stable' if sp.abscissa < 0 else 'unstable'} although "
+                   f"(13) |b|τ < a fails (|b|τ = 1 > 0 = a); Remark 3 contrasts a = 0, b < 0 with the linear case")]
+    if sp.abscissa < 0:
+        res = certify_delay(sys, v["tau"], order=LMI_ORDER)
+        rows.append(Result("linear", "Fig. 6 gains at μ = 1: LK certificate at τ = 1", res.status, 1.0,
+                           res.detail + " — so at μ = 1, a = 0, b < 0 is locally exponentially stable with this "
+                           "damping: (13) is sufficient (with damping), not necessary"))
+    return rows
+
+
 def _check(values) -> list[Result]:
     rows = []
     for number in FIGURE_GAINS:
         rows += _figure_rows(number)
-    return rows
+    return rows + _remark3_rows()
 
 
 def plot_threshold(path, *, a=2, taus=("0.5", "0.9", "1.5"), bs=None):
@@ -218,8 +256,10 @@ def plot_threshold(path, *, a=2, taus=("0.5", "0.9", "1.5"), bs=None):
     for k, tau in enumerate(taus):
         tq = sympy.Rational(tau)
         hs = [threshold(sympy.Rational(a), sympy.Rational(str(b)), tq)["h_star"] for b in bs]
-        ys = [np.nan if x is None else x for x in hs]
-        ax.plot(bs, ys, "-o", ms=3, color=f"C{k}", label=f"h*(a = {a}, b, τ = {tau})")
+        ys = np.array([np.nan if x is None else x for x in hs])
+        floor = ys <= H_MIN   # stable at every damping tried: h* ≤ H_MIN, drawn on the floor
+        ax.plot(bs, np.where(floor, np.nan, ys), "-o", ms=3, color=f"C{k}", label=f"h*(a = {a}, b, τ = {tau})")
+        ax.plot(bs[floor], ys[floor], "v", ms=5, mfc="none", color=f"C{k}")
         for sgn in (-1, 1):
             ax.axvline(sgn * a / float(tq), color=f"C{k}", ls=":", lw=0.8)
     for number, marker in ((1, "s"), (2, "X")):
@@ -229,7 +269,8 @@ def plot_threshold(path, *, a=2, taus=("0.5", "0.9", "1.5"), bs=None):
     ax.set_xlabel("b")
     ax.set_ylabel("damping threshold h* (F = h·I)")
     ax.set_yscale("log")
-    ax.set_title(f"paper 002, μ = 1: stable above h* (dotted: |b|τ = a, the edge of (13))")
+    ax.set_title(f"paper 002, μ = 1: stable above h* (▽: h* ≤ {H_MIN}; no point: unstable up to h = {H_MAX:g};\n"
+                 "dotted: |b|τ = a, the edges of (13))", fontsize=10)
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1), fontsize=8)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
