@@ -360,8 +360,17 @@ def decide_order(nu1, nu2, mu) -> ConditionResult:
             f"μ − {ratio} = {hi}; ν1, ν2 ≥ 2: {nu1 >= 2 and nu2 >= 2}")
     if ok:
         return ConditionResult("1 < (ν2+μ−1)/ν1 < μ", Status.EXACT, margin=Margin(min(lo, hi), min(lo, hi)),
-                               detail=f"holds: {text}")
+                               detail=f"holds: {text}; {orders_always_exist()}")
     return ConditionResult("1 < (ν2+μ−1)/ν1 < μ", Status.FAILED, witness=(nu1, nu2, mu), detail=f"fails: {text}")
+
+
+def orders_always_exist() -> str:
+    """Why the order condition is no extra hypothesis of Theorem 2: ν1 = ν2 = 2 satisfies it for every μ > 1 (exact)."""
+    mu = sympy.Symbol("mu", positive=True)
+    ratio = (2 + mu - 1) / 2
+    lo, hi = sympy.simplify(ratio - 1), sympy.simplify(mu - ratio)
+    return (f"for every μ > 1 the orders ν1 = ν2 = 2 satisfy it (exact: (ν2+μ−1)/ν1 − 1 = {lo}, "
+            f"μ − (ν2+μ−1)/ν1 = {hi}, both positive for μ > 1), so it is no extra hypothesis of Theorem 2")
 
 
 # -- the order condition derived from the printed estimate -------------------------------------------------

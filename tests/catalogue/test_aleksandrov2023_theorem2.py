@@ -228,3 +228,12 @@ def test_singular_B_fails_the_hypotheses_without_an_error():
     res = {h.name: h.evaluate(_sub(b11=0, b12=0)) for h in theorem2.hypotheses}
     for name in ("B nonsingular", "(7) asymptotically stable", "(8) asymptotically stable", P4_along_1.name):
         assert res[name].status is Status.FAILED, name
+
+
+def test_the_order_condition_is_always_satisfiable():
+    mu = sympy.Symbol("mu", positive=True)
+    text = dec.orders_always_exist()
+    assert str(mu / 2 - sympy.Rational(1, 2)) in text  # both margins (μ − 1)/2
+    for m in (sympy.Rational(11, 10), 2, 7):
+        assert dec.decide_order(2, 2, m).status is Status.EXACT
+    assert dec.decide_order(2, 2, 1).status is Status.FAILED  # μ = 1: (2 + 0)/2 = 1, not > 1
