@@ -199,8 +199,9 @@ def find_choices(values) -> dict:
     The recipe follows the proof: λ large (λc7/2 beats c8 and the Young remainders, λc1
     beats c3²/c2), α = c11/4, β = c11/(4τ) (so α + βτ = c11/2), the η's split the ‖q̇‖²
     budget, then δ_q is the largest value (three digits, times 0.9) that keeps every
-    δ-term below half its budget (needs μ > 1 and 2σ > μ + 1).  Returns {} when the gains
-    admit none (c11 ≤ 0: Π + τΠ̃ not positive definite).
+    δ-term below half its budget (needs μ > 1 and 2σ > μ + 1; returns {} otherwise).  When
+    Π + τΠ̃ is not positive definite (c11 ≤ 0) the recipe runs with c11 = 0.01, and the chain
+    fails at the sign of the ‖q‖^{μ+1} coefficient of W.
 
     Examples
     --------
@@ -210,8 +211,10 @@ def find_choices(values) -> dict:
     ['alpha', 'beta', 'delta_q', 'delta_v', 'eta', 'eta_K', 'eta_j', 'eta_w', 'lam']
     """
     c = _estimates(values)
-    if not (c["c11"] > 0 and c["mu"] > 1 and 2 * c["sigma"] > c["mu"] + 1):
+    if not (c["mu"] > 1 and 2 * c["sigma"] > c["mu"] + 1):
         return {}
+    if c["c11"] <= 0:  # Π + τΠ̃ not positive definite: choices anyway, the chain then fails where it must
+        c["c11"] = 0.01
     am, aM, bm, kt, mu_, sg, tau_ = c["a_min"], c["a_max"], c["b_min"], c["kt"], c["mu"], c["sigma"], c["tau"]
     lam_ = _above(1.2 * max(4 * aM / bm, 8 * aM**2 / (am * bm)))
     L = float(lam_)

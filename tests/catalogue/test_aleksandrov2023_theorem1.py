@@ -112,14 +112,6 @@ def test_skew_bound_4_needs_p0_above_max_phi():
 
 
 # ---- the item ---------------------------------------------------------------------------------
-def test_the_item_reports_hypotheses_and_identities():
-    rep = theorem1.run({}, budget=60)
-    by = {r.name: r for r in rep.results}
-    assert by["Vdot_structured"].status is Status.EXACT
-    assert by["Vdot_printed"].status is Status.EXACT
-    assert all(by[h.name].status.is_proof for h in HYPOTHESES)
-
-
 def test_the_item_fails_on_an_indefinite_potential():
     rep = theorem1.run({"pi04": "-1/2"}, budget=60)
     assert rep.exit_code == 1 and rep.verdict.startswith("failed: hypotheses")
@@ -172,8 +164,13 @@ def test_the_theorem_is_established_at_the_defaults():
     rep = theorem1.run({}, budget=60)
     assert rep.verdict.startswith("established"), rep.verdict
     assert "Vdot_printed exact" in rep.verdict
+    by = {r.name: r for r in rep.results}
+    assert by["Vdot_structured"].status is Status.EXACT
+    assert all(by[h.name].status.is_proof for h in HYPOTHESES)
+    assert by["Krasovskii conditions"].status is Status.CERTIFIED
 
 
+@pytest.mark.slow
 def test_the_chain_is_recomputed_at_other_gains():
     rep = theorem1.run({"tau": "2"}, budget=60)
     assert rep.verdict.startswith("established"), rep.verdict
@@ -202,6 +199,7 @@ def test_young_with_a_wrong_parameter_in_a_chain_step_fails():
 
 
 # ---- Corollary 1 ----------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_corollary1_constants_are_certified_at_the_defaults():
     from lkverify.proofs.aleksandrov2023.corollary1 import corollary1
 
@@ -213,3 +211,27 @@ def test_corollary1_constants_are_certified_at_the_defaults():
     assert "d1 ≤" not in by["d1"].detail  # the item computes d1, it does not take a printed value
     # the exponent of the envelope is −1/(μ − 1) = −1/2 (p = (μ + 1)/2 = 2)
     assert "^(−0.5)" in by["envelope d1"].detail
+
+
+# ---- the printed V̇ in R^n with general forms --------------------------------------------------------
+def test_printed_vdot_with_general_forms_in_the_plane_is_exact_and_a_flip_is_refuted():
+    from lkverify.proofs.aleksandrov2023.theorem1_general import printed_vdot_claim
+
+    assert printed_vdot_claim(2).check({}, values={}, budget=120).status is Status.EXACT
+    assert printed_vdot_claim(2, flip="alpha").check({}, values={}, budget=120).status is Status.FAILED
+
+
+@pytest.mark.slow
+def test_printed_vdot_with_general_forms_in_r3_is_exact():
+    from lkverify.proofs.aleksandrov2023.theorem1_general import printed_vdot_claim
+
+    assert printed_vdot_claim(3).check({}, values={}, budget=300).status is Status.EXACT
+    assert printed_vdot_claim(3, flip="A").check({}, values={}, budget=300).status is Status.FAILED
+
+
+def test_corollary1_is_declared_for_p_of_the_corollary():
+    """V̇ ≤ −c̃V^{(μ+1)/2}: p = 2 for the instance's μ = 3; the constants job refuses another μ."""
+    from lkverify.proofs.aleksandrov2023.corollary1 import COROLLARY1_CONSTANTS, DECAY
+
+    assert DECAY.p == (P3.resolve({}, use_defaults=True)["mu"] + 1) / 2
+    assert "μ = 2" in COROLLARY1_CONSTANTS.applies({"mu": 2})
