@@ -312,8 +312,11 @@ def hypotheses2(values):
 
 
 def _check(values):
+    from .chetaev import chetaev_results
+
     out, a, derived, printed = theorem2_results(values)
-    return hypotheses2(values) + out + bound_310_results(a, derived, printed) + gamma_results(values)
+    return (hypotheses2(values) + out + bound_310_results(a, derived, printed) + gamma_results(values)
+            + chetaev_results(a, derived))
 
 
 theorem2 = Check("theorem2", parameters=P, checks=[_check], paper=PAPER,

@@ -109,6 +109,9 @@ def test_theorem2_findings(theorem2_default):
     assert st["(3.10) along the true loop (1.3), (3.2)–(3.4)"] is Status.FAILED
     assert st["(3.12): V̇ + γV ≤ 0 on D (3.6), given (3.10)"] is Status.EXACT
     assert st["γ of (3.12) against the largest γ of this step"] is Status.EXACT
+    assert st["(3.11): the signed sum has the rate of V_δ along (1.4)"] is Status.EXACT
+    assert st["(3.11) as printed: V̇_c = 2V̇ (3.10)"] is Status.FAILED
+    assert st["(3.11) with K_p and ‖η‖²: V̇_c = 2V̇"] is Status.EXACT
 
 
 def test_wrong_gamma_refuted_and_reordered_gamma_passes():
