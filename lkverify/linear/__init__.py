@@ -11,6 +11,8 @@
 :mod:`.hierarchy`
     the LK LMI hierarchy (Jensen, Wirtinger, Bessel–Legendre of order N; Seuret & Gouaisbaut 2015),
     solved with cvxpy + Clarabel, rounded to rationals and re-verified exactly;
+:mod:`.interval`
+    one certificate for every delay of an interval (concavity in h: exact; else arb pieces);
 :mod:`.margin`
     the largest (and smallest) delay of a stability interval with a verified certificate, by bisection;
 :mod:`.run`, :mod:`.figures`
@@ -20,6 +22,7 @@
 from .crossing import Crossing, StabilityIntervals, crossing_frequencies, stability_intervals
 from .hierarchy import (LmiCertificate, LmiResult, certify_delay, check_certificate, method_name, quick_check,
                         solve_certificate)
+from .interval import IntervalCertificate, certify_cover, certify_interval
 from .margin import CertifiedInterval, certified_interval
 from .model import LinearDelaySystem, parse_delay
 from .run import linear_report, system_from_values
@@ -28,7 +31,7 @@ from .spectrum import Spectrum, generator_matrix, rightmost_roots, spectral_absc
 
 __all__ = [
     "CertifiedInterval", "LmiCertificate", "LmiResult", "certified_interval", "certify_delay", "check_certificate",
-    "method_name", "quick_check", "solve_certificate", "linear_report", "plot_linear", "system_from_values",
+    "IntervalCertificate", "certify_cover", "certify_interval", "method_name", "quick_check", "solve_certificate", "linear_report", "plot_linear", "system_from_values",
     "Crossing", "LinearDelaySystem", "Spectrum", "StabilityIntervals", "crossing_frequencies", "generator_matrix",
     "parse_delay", "rightmost_roots", "spectral_abscissa", "stability_intervals",
 ]
