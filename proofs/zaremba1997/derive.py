@@ -118,10 +118,13 @@ def witness_point(expr, *, seed=0, frame=("s1", "s2", "s3")):
     return point
 
 
-def _show(expr, n=160):
-    s = str(expr)
-    if len(s) < 300:
-        s = str(sympy.factor(expr))
+def _show(p, n=160):
+    """A ring element as text: factored when short, else its first terms."""
+    if len(p.terms()) <= 12:
+        s = str(sympy.factor(p.as_expr()))
+    else:
+        head = p.ring.from_dict(dict(p.terms()[:12]))
+        s = str(head.as_expr()) + f" + … ({len(p.terms())} terms)"
     return s if len(s) <= n else s[: n - 1] + "…"
 
 
@@ -186,18 +189,19 @@ def compare(name, printed, derived, *, kind="identity", reference="", R=None):
             left.remove(hit)
         else:
             unmatched.append((lab, x))
-    res_expr = residue.as_expr()
+    used = sympy.Matrix(list(R.symbols))  # every generator gets a value (those absent from the residue are ignored)
     for seed in range(5):  # a non-zero polynomial vanishes at few rational points
-        point = witness_point(res_expr, seed=seed)
-        value = res_expr.xreplace(point)
+        point = witness_point(used, seed=seed)
+        value = residue.evaluate([(g, point[sym]) for g, sym in zip(R.gens, R.symbols)])
         if value != 0:
             break
-    terms = [{"printed": lab, "value": _show(x.as_expr())} for lab, x in unmatched]
-    terms += [{"derived": lab, "value": _show(x.as_expr())} for lab, x in left]
+    point = {sym: point[sym] for g, sym in zip(R.gens, R.symbols) if residue.degree(g) > 0}  # report what it uses
+    terms = [{"printed": lab, "value": _show(x)} for lab, x in unmatched]
+    terms += [{"derived": lab, "value": _show(x)} for lab, x in left]
     detail = (f"{reference or 'the printed form'} differs from the derivation: confirmed {', '.join(matched) or 'none'}; "
               f"not in the derivation: {', '.join(lab for lab, _ in unmatched) or 'none'}; derived but not printed: "
-              f"{', '.join(lab for lab, _ in left) or 'none'}; printed − derived = {_show(res_expr)}"
+              f"{', '.join(lab for lab, _ in left) or 'none'}; printed − derived = {_show(residue)}"
               f" (= {value} ≠ 0 at an exact rational witness)")
     status = Status.FAILED if value != 0 else Status.UNDECIDED
-    return Result(kind, name, status, {"terms": terms, "residue": _show(res_expr, 400), "witness_value": str(value),
+    return Result(kind, name, status, {"terms": terms, "residue": _show(residue, 400), "witness_value": str(value),
                                        "witness": {str(k): str(v) for k, v in point.items()}}, detail)
