@@ -17,8 +17,10 @@ and of the structured V̇ (:mod:`.theorem1_functional`), with, for the instance,
     (template constants certified with arb on the circle), λp0 ≥ sup −λq̇ᵀP(q)q/(‖q̇‖‖q‖^σ) (by (4)).
 
 Finding: the upper bound prints c3‖q̇(t)‖‖q̇(t)‖ where the term it bounds, qᵀAq̇, needs
-c3‖q(t)‖‖q̇(t)‖.  As printed (c3 only claimed to exist) the step is refuted by a witness
-with ‖q̇‖ ≪ ‖q‖; with ‖q‖‖q̇‖ it is proved (:data:`upper_corrected`).
+c3‖q(t)‖‖q̇(t)‖.  As printed, with the c3 of the lower bound (the same symbol, c3 = ‖A‖), the
+step is refuted by a witness (qᵀAq̇ = 0.375 > c3‖q̇‖² = 0.1875 at the defaults); no other c3
+saves the term either, since qᵀAq̇/‖q̇‖² is unbounded as q̇ → 0 with q fixed.  With ‖q‖‖q̇‖ it
+is proved (:data:`upper_corrected`).
 """
 
 import sympy
@@ -115,10 +117,10 @@ lower = TermwiseBound("printed V ≥ … (c1…c4)", functional, system3,
                       **_common)
 
 _printed_terms = functional_terms("upper", K_, cross_bound=(c3 * w * w, Printed("the upper estimate after (П.1)")))
-#: as printed: V ≤ λc5‖q̇‖² + c6‖q‖² + c3‖q̇‖‖q̇‖ + … (c3 only claimed to exist)
+#: as printed: V ≤ λc5‖q̇‖² + c6‖q‖² + c3‖q̇‖‖q̇‖ + … (c3 = ‖A‖, the c3 of the lower bound)
 upper_printed = TermwiseBound("printed V ≤ … + c3‖q̇‖‖q̇‖ + … (c3…c6)",
                               functional, system3, "V", _printed_terms,
-                              sum((tb.bound for tb in _printed_terms), sympy.S.Zero), MEASURES, exists=(c3,),
+                              sum((tb.bound for tb in _printed_terms), sympy.S.Zero), MEASURES,
                               witness_seconds=10.0, **_common)
 _upper_terms = functional_terms("upper", K_, cross_bound=(c3 * e * w, _cs_A))
 #: corrected: c3‖q‖‖q̇‖ in place of c3‖q̇‖‖q̇‖
