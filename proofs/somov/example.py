@@ -101,7 +101,7 @@ class LinearDecay(RunClaim):
 
     run: str
     exact_rate: bool
-    rtol: float = 1e-3
+    rtol: float = 1e-5
 
     @property
     def name(self):

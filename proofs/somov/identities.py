@@ -41,7 +41,16 @@ def nonzero_witness(expr: sympy.Expr):
 
 
 def _is_zero(e) -> bool:
-    """Exactly: the numerator of ``together(e)`` expands to 0 (the denominators here never vanish)."""
+    """Exactly: ``e`` is 0 in the field of rational functions ℚ(symbols) (else: the numerator of
+    ``together(e)`` expands to 0, e.g. with I or radicals); the denominators here never vanish."""
+    e = sympy.sympify(e)
+    syms = sorted(e.free_symbols, key=str)
+    if syms:
+        try:
+            field = sympy.field(syms, sympy.QQ)[0]
+            return field.from_expr(e) == 0
+        except (sympy.polys.polyerrors.PolynomialError, ValueError, TypeError, sympy.CoercionFailed):
+            pass
     return sympy.expand(sympy.fraction(sympy.together(e))[0]) == 0
 
 

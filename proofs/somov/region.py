@@ -34,7 +34,7 @@ from .comparison import channel_form, majorant
 from .equations import PAPER, P
 from .grid import run_grid, run_points
 
-__all__ = ["CertifiedRegion", "certified_region", "region", "RegionConstants", "W_RANGE"]
+__all__ = ["CertifiedRegion", "certified_region", "check_radius", "region", "RegionConstants", "W_RANGE"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -85,6 +85,35 @@ def certified_region(v) -> CertifiedRegion:
     return CertifiedRegion(r0, rho, (Q[0, 0], abs(Q[0, 1]), Q[1, 1]))
 
 
+def check_radius(v, rho) -> Result:
+    """Is {‖V‖ < ρ} a region of the comparison system, φ < 0 on (0, ρ)?  Exact; a too large ρ is refuted.
+
+    φ = −αr on (0, r0]; on [r0, ρ) φ = ψ, which is negative there iff ψ has no root in [r0, ρ) —
+    i.e. ρ ≤ ρ*.  A refutation names an exact rational r < ρ with φ(r) ≥ 0.
+    """
+    r, g, psi = majorant(v)
+    reg = certified_region(v)
+    rho = sympy.sympify(rho)
+    if (rho - reg.rho).is_nonpositive:
+        return Result("region", f"region ||V|| < {sympy.sstr(rho)}", Status.EXACT, {"rho_star": float(reg.rho)},
+                      f"ρ = {sympy.sstr(rho)} ≤ ρ* = {float(reg.rho):.6g}: φ < 0 on (0, ρ) (exact)")
+    # a rational w in [ρ*, ρ) just above ρ*: ψ changes sign at its simple root ρ*, so ψ(w) ≥ 0 there
+    w = None
+    for digits in range(4, 40, 4):
+        cand = sympy.Rational(int(sympy.ceiling(reg.rho * 10 ** digits)), 10 ** digits)
+        if cand < rho and psi.subs(r, cand) >= 0:
+            w = cand
+            break
+    if w is None:
+        return Result("region", f"region ||V|| < {sympy.sstr(rho)}", Status.UNDECIDED, {"rho_star": float(reg.rho)},
+                      f"ρ = {sympy.sstr(rho)} > ρ* = {float(reg.rho):.6g} but no rational witness in [ρ*, ρ) was found")
+    val = (-sympy.sympify(v["alpha"]) * w + 3 * sympy.Max(0, g.subs(r, w)) / sympy.sympify(v["beta"]))
+    return Result("region", f"region ||V|| < {sympy.sstr(rho)}", Status.FAILED,
+                  {"rho_star": float(reg.rho), "witness": str(w), "phi": str(val)},
+                  f"refuted: φ({sympy.sstr(w)}) = {sympy.sstr(val)} ≥ 0 with {sympy.sstr(w)} < ρ = {sympy.sstr(rho)} "
+                  f"(ρ* = {float(reg.rho):.6g}; exact)")
+
+
 def _region_rows(v) -> list:
     r, g, psi = majorant(v)
     reg = certified_region(v)
@@ -119,8 +148,8 @@ class RegionConstants:
 
     goals = ["default"]
 
-    def __init__(self, n_s=16, n_w=16, t_end=300.0, dt=1.0):
-        self.n_s, self.n_w, self.t_end, self.dt = n_s, n_w, t_end, dt
+    def __init__(self, n_s=15, n_w=15, t_end=300.0, dt=1.0, n_boundary=N_BOUNDARY):
+        self.n_s, self.n_w, self.t_end, self.dt, self.n_boundary = n_s, n_w, t_end, dt, n_boundary
 
     def run(self, item_name, values, shown, *, budget=150.0, progress=None, goal=None):
         rows = _region_rows(values)
@@ -131,12 +160,12 @@ class RegionConstants:
             progress(f"{item_name}: {self.n_s}×{self.n_w} initial states × 4 directions to t = {self.t_end:g}")
         grid = run_grid(values, s, w, t_end=self.t_end, dt=self.dt)
         rows += grid_rows(reg, grid)
-        sb = np.linspace(0.0, 0.999 * float(reg.s_max), N_BOUNDARY)
+        sb = np.linspace(0.0, 0.999 * float(reg.s_max), self.n_boundary)
         wb = 0.999 * reg.w_boundary(sb)
         ok = run_points(values, sb, wb, t_end=self.t_end, dt=self.dt)
         rows.append(Result("simulation", "certified boundary converges", Status.SIMULATED if ok.all() else Status.FAILED,
-                           {"points": N_BOUNDARY, "not_converged": int((~ok).sum())},
-                           f"{int(ok.sum())} of {N_BOUNDARY} initial data just inside the certified boundary "
+                           {"points": self.n_boundary, "not_converged": int((~ok).sum())},
+                           f"{int(ok.sum())} of {self.n_boundary} initial data just inside the certified boundary "
                            f"(|σ0| from 0 to {0.999 * float(reg.s_max):.3g}, 4 direction pairs each) converge"))
         bad = [r.name for r in rows if not r.status.holds]
         verdict = "every check holds" if not bad else f"failed: {', '.join(bad)}"
