@@ -31,7 +31,9 @@ in w = ‖ω(t)‖, e_i = ‖s_i(t) − r_i‖, l = ‖L(t)‖ and the memory me
   Young (η) and J_i^{2k/P} ≤ (ḡδ^P)^{2k/P−1}J_i on the region.
 
 The conclusion ([9, pp. 211, 212]) is Krasovskii's sign test with the memory measures bounded
-by the history's sup (:class:`~lkverify.certify.steps.memory.MemoryKrasovskii`).  The choices
+by the history's sup (:class:`~lkverify.certify.steps.memory.MemoryKrasovskii`); the paper's final
+estimates V ≥ ½(f + μ∫∫‖G‖W + c1γ‖ω‖²) (c1 = θ_min/2) and V̇ ≤ −½(γc6‖ω‖² + εc11ΣW(t) +
+μ∫‖G(t−ξ)‖W) are then compared with the checked L and W coefficient by coefficient (findings).  The choices
 γ, μ, ε, δ, η_w, η_K, η are found at the run's gains by :func:`find_choices` (floating point
 only picks them; every step is proved at those exact values).
 """
@@ -62,7 +64,7 @@ from .functional14 import J, K as K_signed, M, derivation, functional, int_KfL
 from .theorem1_bound import MEASURES as _T1, L_norm_tree, M_norm_tree, Theta_w_tree, dinv, eig_of, f_of
 from .theorem1_chain import _homogeneous_estimate, _rational_above, _rational_below, lemma10
 
-__all__ = ["CONCLUSION", "MEASURES", "REGION", "chain_steps", "find_choices", "steps"]
+__all__ = ["CONCLUSION", "MEASURES", "PRINTED_LOWER", "PRINTED_VDOT", "REGION", "chain_steps", "find_choices", "steps"]
 
 K = 2 * nu + 1  # k
 Pw = 2 * nu + 2  # P
@@ -277,8 +279,49 @@ def chain_steps():
 
 steps = chain_steps()
 
+# ---- the printed final estimates ---------------------------------------------------------------
+c11 = Xi_c * dmin * sympy.Min(*[(a / 2) ** nu * a**2 for a in (alpha1, alpha2)])  # εc11: Assumption 2 and (10)
+#: V ≥ ½(f + μ∫∫‖G‖W + c1γ‖ω‖²) with c1 = θ_min/2 (the constant of (γ/2)ωᵀΘω ≥ c1γ‖ω‖²)
+PRINTED_LOWER = ((alpha1 * e1**2 + alpha2 * e2**2) / 2 + mu * (q1 + q2) + theta_min / 2 * gamma * w**2) / 2
+#: V̇ ≤ −½(γc6‖ω‖² + εc11(‖s1−r1‖^{2ν+2} + ‖s2−r2‖^{2ν+2}) + μ∫‖G(t−ξ)‖W)
+PRINTED_VDOT = -(gamma * c6 * w**2 + epsilon * c11 * (e1**Pw + e2**Pw) + mu * (j1 + j2)) / 2
+
+
+def _printed_gaps(lower_rhs, vdot_rhs):
+    """(name, L − printed lower, printed V̇ − W): both must have every coefficient ≥ 0."""
+    return (("V ≥ ½(f + μ∫∫‖G‖W + c1γ‖ω‖²)", lower_rhs - PRINTED_LOWER),
+            ("V̇ ≤ −½(γc6‖ω‖² + εc11ΣW(t) + μ∫‖G(t−ξ)‖W)", PRINTED_VDOT - vdot_rhs))
+
+
+class _Conclusion(MemoryKrasovskii):
+    """Krasovskii with memory, and the paper's final estimates compared with the checked L and W (findings)."""
+
+    def certify(self, checked, values, **kw):
+        from lkverify import Result
+        from lkverify.certify.steps.chain import _coefficient_sign
+
+        rows, status, detail = super().certify(checked, values, **kw)
+        sub = dict(system_pid.parameters.substitution(values))
+        sub.update(steps[0].named_constants(values))
+        meas = {m.symbol for m in MEASURES}
+        for name, gap in _printed_gaps(checked["lower"][1].rhs, checked["vdot"][1].rhs):
+            gap = apply_substitution(sympy.sympify(gap).xreplace(sub), sub)
+            worst, why = Status.EXACT, ""
+            for mono, coeff in collect_monomials(sympy.expand(gap), meas).items():
+                sign, st = _coefficient_sign(coeff)
+                if sign is None or sign < 0:
+                    worst = Status.UNDECIDED if sign is None else Status.FAILED
+                    why = f"the coefficient of {mono} falls short by {float(coeff):.4g}"
+                    break
+                worst = Status.CERTIFIED if st is Status.CERTIFIED else worst
+            rows.append(Result("bound", f"printed final estimate {name}", worst, None,
+                               why or f"follows from the checked {'L' if 'V ≥' in name else 'W'}, coefficient by "
+                                      f"coefficient ({worst})"))
+        return rows, status, detail
+
+
 #: the conclusion: V ≥ φ(‖x(t)‖), V ≤ U(‖x_t‖_[0,t]), V̇ ≤ −ψ(‖x(t)‖), x(t) = (ω, s1 − r1, s2 − r2)
-CONCLUSION = MemoryKrasovskii(("w", "e1", "e2"))
+CONCLUSION = _Conclusion(("w", "e1", "e2"))
 
 
 # ---- the free choices ---------------------------------------------------------------------------
@@ -297,14 +340,16 @@ def _coefficients(values, choice):
     sub.update({sympy.Symbol(n, positive=True): sympy.Rational(choice[n]) for n in _CHOICES})
     meas = {m.symbol for m in MEASURES}
     out = []
-    for step in steps:
+    for step in steps:  # every coefficient of its sign (U's are positive for every positive choice)
         if step.role == "upper":
-            continue  # U's coefficients are positive for every positive choice
-        rhs = sympy.sympify(step.rhs).xreplace(sub)
-        rhs = apply_substitution(rhs, sub)
+            continue
+        rhs = apply_substitution(sympy.sympify(step.rhs).xreplace(sub), sub)
         for mono, coeff in collect_monomials(rhs, meas).items():
-            fn = sympy.lambdify([delta], coeff, "math")
-            out.append((1 if step.role == "lower" else -1, fn))
+            out.append((1 if step.role == "lower" else -1, sympy.lambdify([delta], coeff, "math")))
+    for _, gap in _printed_gaps(steps[0].rhs, steps[2].rhs):  # and the paper's final estimates
+        gap = apply_substitution(sympy.sympify(gap).xreplace(sub), sub)
+        for mono, coeff in collect_monomials(sympy.expand(gap), meas).items():
+            out.append((1, sympy.lambdify([delta], coeff, "math")))
     return out
 
 
@@ -328,11 +373,12 @@ def _largest_delta(fns, hi=0.5):
 def find_choices(values) -> dict:
     """γ, μ, ε, δ, η_w, η_K, η for which every coefficient of L and W has its sign (exact strings).
 
-    The recipe follows the proof ("δ, μ small, γ large"): ε = 1/2; η_w leaves α_i/4 of f's
-    e_i² in L; μ is a quarter of the εc11 budget per ḡ; η_K leaves μ/2 of the Q_i; η gives the
-    γ-terms a quarter of γc6; γ twice what the ω-terms need; then δ is the largest value
-    (bisection, times 0.9, three digits) with every coefficient of its sign.  Floating point
-    only picks the numbers; the steps prove them.
+    The recipe follows the proof ("δ, μ small, γ large") and aims at the paper's final
+    estimates with their factors ½: ε = 1/2; η_w leaves 3α_i/8 of f's e_i² in L; μḡ is an
+    eighth of εc11; η_K leaves μ/2 of the Q_i; η gives the γ-terms a quarter of γc6; γ is 10 %
+    above what the ω-terms need; then δ is the largest value (bisection, times 0.9, three
+    digits) with every coefficient of L and W of its sign and the printed estimates implied.
+    Floating point only picks the numbers; the steps prove them.
 
     Examples
     --------
@@ -367,14 +413,14 @@ def _recipe(values) -> dict:
     c12 = gb ** (1 / P_)
     if not all(math.isfinite(x) and x > 0 for x in (gb, kb, sg, nc["Xi_c"])):
         raise ValueError("outside the hypotheses")
-    eta_w_ = _rational_below(1 / (2 * dn * thmax))
+    eta_w_ = _rational_below(1 / (4 * dn * thmax))
     E = min(float(eps) * nc["Xi_c"] * nc["lambda_Dinv"] * (a / 2) ** nu_ * a**2 for a in (a1, a2))
-    mu_ = _rational_below(E / (4 * gb))
+    mu_ = _rational_below(E / (8 * gb))
     q = P_ / k
     eta_K_ = _rational_above((2 * dn * ch * kb ** (1 / P_) * (a1 + a2) / (q * float(mu_))) ** k)
     eta_ = _rational_below(c6_ / (4 * (b * ch + ch * c12)))
     rest = dn * thmax * (a1 + a2) * 1.5 + dn * (a1 + a2) * ch * sg * c12 * float(eta_)
-    gamma_ = _rational_above(max(2 * dn * thmax * (a1 + a2) / float(eta_w_) / thmin, 2 * rest / (0.75 * c6_)))
+    gamma_ = _rational_above(max(2.2 * dn * thmax * (a1 + a2) / float(eta_w_) / thmin, 4.4 * rest / c6_))
     choice = {"gamma": str(gamma_), "mu": str(mu_), "eta_w": str(eta_w_), "eta_K": str(eta_K_), "eta": str(eta_),
               "epsilon": str(eps)}
     d = _largest_delta(_coefficients(v, choice))

@@ -54,6 +54,16 @@ def test_the_chain_is_proved_and_concludes(values):
     rows, status, detail = CONCLUSION.certify(checked, values)
     assert status.is_proof, detail
     assert rows[0].name == "memory measures bounded by the history's sup"
+    printed = {r.name: r.status for r in rows if r.name.startswith("printed final estimate")}
+    assert len(printed) == 2 and all(s.is_proof for s in printed.values()), printed
+    # the printed V̇ estimate without its factor ½ does not follow from this W
+    from lkverify.proofs.aleksandrov2026 import theorem2_chain as chain
+    from lkverify.certify.steps.chain import collect_monomials
+    sub = dict(VDOT.system.parameters.substitution(values))
+    sub.update(VDOT.named_constants(values))
+    gap = sympy.expand((2 * chain.PRINTED_VDOT - checked["vdot"][1].rhs).xreplace(sub))
+    gap = gap.xreplace(sub)
+    assert any(float(c) < 0 for c in collect_monomials(gap, {m.symbol for m in MEASURES}).values())
     # the paper's c12 = (∫_0^∞‖G‖)^{1/(2ν+2)} appears in the Hölder step as (1/2)^{5/13}
     torque = next(t for t in checked["vdot"][1].terms if t.terms == ("−γωᵀ∫f^ν(ξ)G(t−ξ)L(ξ)dξ",))
     assert "Hölder on the memory" in torque.rule
