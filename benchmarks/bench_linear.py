@@ -55,7 +55,8 @@ def main() -> None:
             m, w, c = _timed(lambda: certified_interval(sys, iv.intervals[0], order=order))
             tw, tc = tw + w, tc + c
             lo = "" if m.lower is None else f"{m.lower:.7g} … "
-            print(f"  {m.method:22s} {m.status.value:9s} {lo}{m.upper:.7g}  {m.solves:3d} solves "
+            up = "none" if m.upper is None else f"{m.upper:.7g}"
+            print(f"  {m.method:22s} {m.status.value:9s} {lo}{up}  {m.solves:3d} solves "
                   f"{1000 * w / max(m.solves, 1):6.1f} ms/solve  {w:6.2f} s wall  {c:6.2f} s CPU")
         print(f"  all orders: {tw:.2f} s wall, {tc:.2f} s CPU")
 

@@ -37,7 +37,7 @@ __all__ = ["CertifiedInterval", "certified_interval"]
 
 #: significant digits of the trial delays
 DIGITS = 7
-#: bisection stops when the bracket is below this fraction of the interval's upper end
+#: bisection stops when the bracket is below this fraction of the end searched
 RELATIVE_TOL = 5e-6
 #: delays tried (as fractions of the interval) to find a first feasible point
 STARTS = (0.5, 0.25, 0.75, 0.1, 0.9, 0.05, 0.95)
@@ -155,11 +155,10 @@ def certified_interval(system: LinearDelaySystem, interval, *, order: int = 2) -
         return CertifiedInterval(order, name, None, None, None, None, Status.UNDECIDED, counter[0],
                                  time.perf_counter() - t0,
                                  f"{name}: no strictly feasible delay among {len(STARTS)} points of ({lo:g}, {hi:g})")
-    tol = RELATIVE_TOL * hi
-    up = _verify_end(system, order, _bisect(system, order, start, sympy.Rational(hi), counter, tol))
+    up = _verify_end(system, order, _bisect(system, order, start, sympy.Rational(hi), counter, RELATIVE_TOL * hi))
     down = None
-    if lo > 0:
-        down = _verify_end(system, order, _bisect(system, order, start, _decimal(lo), counter, tol))
+    if lo > 0:  # the tolerance relative to this end: a lower end near 0 is resolved as finely as the upper one
+        down = _verify_end(system, order, _bisect(system, order, start, _decimal(lo), counter, RELATIVE_TOL * lo))
     ends = [r for r in (down, up) if r is not None]
     ok = all(r.holds for r in ends) and (lo == 0 or down is not None)
     status = (Status.EXACT if all(r.status is Status.EXACT for r in ends) else Status.CERTIFIED) if ok \
