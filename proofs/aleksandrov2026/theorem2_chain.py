@@ -64,7 +64,8 @@ from .functional14 import J, K as K_signed, M, derivation, functional, int_KfL
 from .theorem1_bound import MEASURES as _T1, L_norm_tree, M_norm_tree, Theta_w_tree, dinv, eig_of, f_of
 from .theorem1_chain import _homogeneous_estimate, _rational_above, _rational_below, lemma10
 
-__all__ = ["CONCLUSION", "MEASURES", "PRINTED_LOWER", "PRINTED_VDOT", "REGION", "chain_steps", "find_choices", "steps"]
+__all__ = ["CONCLUSION", "MEASURES", "PRINTED_LOWER", "PRINTED_VDOT", "REGION", "chain_steps", "find_choices",
+           "printed_vdot_bound", "steps"]
 
 K = 2 * nu + 1  # k
 Pw = 2 * nu + 2  # P
@@ -278,6 +279,50 @@ def chain_steps():
 
 
 steps = chain_steps()
+
+# ---- the printed V̇ bound with c5 … c10 -----------------------------------------------------------
+c8p, c5p, c10 = Dinv_norm * theta_max, Dinv_norm * theta_max * (alpha1 + alpha2), Dinv_norm * (alpha1 + alpha2) * c10p
+
+
+def printed_vdot_bound(c10_sign=1):
+    """The printed V̇ bound with c5 … c10 on the exact V̇ (a step of its own, not a link of the chain).
+
+    The print reads ``… dξ − + c10‖ω‖∫∫‖G‖…``: with ``c10_sign=-1`` the step is the "−" reading,
+    which the rules refuse (they give +c10).  c5 = ‖D⁻¹‖θ_max(α1 + α2), c6 = λ_min(D),
+    c8 = ‖D⁻¹‖θ_max, c10 = ‖D⁻¹‖(α1 + α2)c10′ and c7, c9, c10′ the certified homogeneous
+    supremum; −f^νLᵀD⁻¹ΞL is kept (≤ −(β + ∫g)λ_min(D⁻¹)f^ν‖L‖², Assumption 2); γβc7 as printed
+    (it needs β ≥ 0, :mod:`.theorem2_bound`).
+    """
+    kS = S1.symbol + S2.symbol
+    kR = R1.symbol + R2.symbol
+    bounds = [
+        TermBound("−γωᵀDω", -gamma * c6 * w**2, Rayleigh(omega(t), D, factor=-gamma, eigenvalue=eig_of("D", "min"),
+                                                       norm_squared=w**2)),
+        TermBound("−γβf^ν ωᵀL", gamma * beta * c7 * w * (e1**K + e2**K),
+                  _UnlessZero(CauchySchwarz(omega(t), L(t), (measured(w_), L_norm_tree(e1_, e2_)),
+                                            factor=-gamma * beta * f_of(e1, e2)),
+                              (Homogeneous(("e1", "e2"), e1**K + e2**K, "c7", factor=gamma * abs(beta) * w),))),
+        TermBound("−γωᵀ∫f^ν(ξ)G(t−ξ)L(ξ)dξ", gamma * c9 * w * kS,
+                  CauchySchwarz(omega(t), J, (measured(w_), _integral_torque), factor=-gamma)),
+        TermBound("−f^ν LᵀD⁻¹ΞL", -Xi_c * dmin * f_of(e1, e2) * l**2,
+                  Evaluated(Rayleigh(L(t), D_inv, factor=-Xi_c * f_of(e1, e2), eigenvalue=eig_of("D", "max", True),
+                                     norm_squared=l**2))),
+        TermBound("−LᵀD⁻¹(ω×(Θω))", c8p * w**2 * (alpha1 * e1 + alpha2 * e2),
+                  CauchySchwarz(L(t), omega(t).cross(Theta * omega(t)),
+                                (L_norm_tree(e1_, e2_), crossed(measured(w_), Theta_w_tree)),
+                                matrix=D_inv, factor=-1, operator_norm=dinv)),
+        TermBound("−MᵀD⁻¹Θω", c5p * w**2, CauchySchwarz(M, Theta * omega(t), (M_norm_tree, Theta_w_tree), matrix=D_inv,
+                                                      factor=-1, operator_norm=dinv)),
+        TermBound("MᵀD⁻¹∫∫G dζ f^νL dξ", c10_sign * c10 * w * kR,
+                  CauchySchwarz(M, int_KfL, (M_norm_tree, _memory_torque), matrix=D_inv, operator_norm=dinv)),
+        TermBound("μ∫_0^∞‖G‖dζ W(t)", mu * gbar * (e1**Pw + e2**Pw), Evaluated(Equal(mu * gbar * (e1**Pw + e2**Pw)))),
+        TermBound("−μ∫‖G(t−ξ)‖W(ξ)dξ", -mu * (j1 + j2), MemoryWeight(("J1", "J2"))),
+    ]
+    sign = "+" if c10_sign > 0 else "−"
+    return TermwiseBound(f"printed V̇ bound with c5…c10 ({sign}c10)", functional, system_pid, "Vdot", bounds,
+                         _sum(bounds), MEASURES, derivation=derivation, region=REGION, definitions=DEFINITIONS,
+                         witness_seconds=1.0)
+
 
 # ---- the printed final estimates ---------------------------------------------------------------
 c11 = Xi_c * dmin * sympy.Min(*[(a / 2) ** nu * a**2 for a in (alpha1, alpha2)])  # εc11: Assumption 2 and (10)

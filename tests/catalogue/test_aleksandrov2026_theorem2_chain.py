@@ -160,3 +160,39 @@ def test_remark3_point_is_established():
 
     rep = theorem2.run({"beta": "-1", "g": "3*exp(-2*zeta)"}, budget=300)
     assert rep.verdict.startswith("established"), rep.verdict
+
+
+# -- the printed V̇ bound with c5 … c10 -------------------------------------------------------------
+def test_printed_vdot_bound_holds_with_plus_c10(values):
+    from lkverify.proofs.aleksandrov2026.theorem2_chain import printed_vdot_bound
+
+    assert printed_vdot_bound(+1).check(values).status.is_proof
+    minus = printed_vdot_bound(-1).check(values, search=False)  # the print's "… dξ − + c10…" read as −c10
+    assert not minus.status.is_proof and "not the rule's" in minus.detail
+
+
+def test_minus_c10_reading_is_refuted_by_a_constant_history_inside_the_region(values):
+    # s_i(ξ) = R r_i for all ξ ∈ [0, t], R a rotation about z by 2·10⁻⁸ rad (Cayley, exact), ω = (0, 0, 1), t = 1:
+    # MᵀD⁻¹∫∫G dζ f^νL dξ > 0 there, while −c10‖ω‖∫∫‖G‖(…) ≤ 0 for every c10 ≥ 0
+    from sympy.core.function import AppliedUndef
+
+    from lkverify import t
+    from lkverify.certify.intervals import sign_of
+    from lkverify.certify.steps.memory import evaluate_constant_integrals
+    from lkverify.declare.parameters import apply_substitution
+    from lkverify.proofs.aleksandrov2026.functional14 import derivation
+
+    term = next(x for x in derivation.terms if x.text == "MᵀD⁻¹∫∫G dζ f^νL dξ").expr
+    term = apply_substitution(term, P.substitution(values))
+    a = sympy.Rational(1, 10**8)
+    c, s = (1 - a**2) / (1 + a**2), 2 * a / (1 + a**2)
+    R = sympy.Matrix([[c, -s, 0], [s, c, 0], [0, 0, 1]])
+    svals = [R * sympy.Matrix(values[k]) for k in ("r1", "r2", "r3")]
+    assert all((svals[i] - sympy.Matrix(values[k])).norm() < values["delta"] for i, k in ((0, "r1"), (1, "r2")))
+    rep = {}
+    for atom in term.atoms(AppliedUndef):
+        name = atom.func.__name__
+        rep[atom] = (1 if name.endswith("z") else 0) if name.startswith("omega") else \
+            svals[int(name[1]) - 1]["xyz".index(name[-1])]
+    value = evaluate_constant_integrals(term.xreplace(rep).subs(t, 1)).doit()
+    assert not value.free_symbols and sign_of(value).sign == 1
