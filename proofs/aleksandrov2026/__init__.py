@@ -30,7 +30,8 @@ Modules: :mod:`.equations` (parameters, states, (2), (7), (13)), :mod:`.theorem1
 :mod:`.functional9`, :mod:`.theorem1_chain` (the proof's chain to the conclusion, its choices),
 :mod:`.remark1` (the certified δ against τ and α), :mod:`.remark3` (β ≤ 0 with G = a g I: the threshold a*),
 :mod:`.theorem2`, :mod:`.theorem2_bound` (the printed γβc7 step, refuted for β < 0, and its
-corrected form), :mod:`.example` (section 5).
+corrected form), :mod:`.theorem2_chain` (the proof of Theorem 2 to its conclusion with memory
+measures, its choices, the printed V̇ bound and final estimates), :mod:`.example` (section 5).
 """
 
 from .equations import (PAPER, D, D_inv, L, P, Theta, W, alpha1, alpha2, beta, f, g, gamma, lam, mu, nu, omega, r1, r2, r3,
