@@ -52,8 +52,8 @@ from lkverify.certify.steps.memory import (U, Evaluated, KernelBound, MemoryHold
                                            evaluate_constant_integrals, kernel_integral, memory_integral_of,
                                            memory_measure)
 from lkverify.certify.steps.rewrites import LowerBound, OnRegion, PowerSplit, YoungEach
-from lkverify.certify.steps.rules import (Application, CauchySchwarz, Condition, Equal, Homogeneous, Rayleigh, crossed, measured, scaled,
-                                          Rule, summed, unit)
+from lkverify.certify.steps.rules import (Application, CauchySchwarz, Condition, Equal, Homogeneous, Rayleigh, Rule,
+                                          crossed, measured, scaled, summed, unit)
 from lkverify import tail_integral
 from lkverify.declare.parameters import apply_substitution
 
@@ -232,7 +232,8 @@ def _vdot_bounds():
     return [
         TermBound("−γωᵀDω", -gamma * c6 * w**2, Rayleigh(omega(t), D, factor=-gamma, eigenvalue=eig_of("D", "min"),
                                                        norm_squared=w**2)),
-        TermBound("−γβf^ν ωᵀL", gamma * abs(beta) * c7 * (eta * w**2 + delta ** (2 * nu) * (e1**Pw + e2**Pw) / (2 * eta)),
+        TermBound("−γβf^ν ωᵀL",
+                  gamma * abs(beta) * c7 * (eta * w**2 + delta ** (2 * nu) * (e1**Pw + e2**Pw) / (2 * eta)),
                   _UnlessZero(CauchySchwarz(omega(t), L(t), (measured(w_), L_norm_tree(e1_, e2_)),
                                             factor=-gamma * beta * f_of(e1, e2)),
                               (Homogeneous(("e1", "e2"), e1**K + e2**K, "c7", factor=gamma * abs(beta) * w),

@@ -59,7 +59,7 @@ from ...report.results import Result
 from ...status import Status
 from .chain import Krasovskii
 from .measures import Measure
-from .rewrites import _measure_symbols, _substitute
+from .rewrites import _substitute
 from .rules import Application, Condition, Norm, Rule, _cond, _homogeneous_sup, _integrand, nonnegative
 
 __all__ = ["KIND", "Evaluated", "KernelBound", "MemoryHolder", "MemoryKrasovskii", "MemoryMeasure", "MemoryWeight",
