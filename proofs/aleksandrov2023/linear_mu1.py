@@ -57,13 +57,13 @@ import math
 import numpy as np
 import sympy
 
-from lkverify import Check, Result, Status
+from lkverify import Check, InputError, Result, Status
 from lkverify.linear import LinearDelaySystem, certify_delay, rightmost_roots
 
 from .equations import PAPER, P
 from .section6 import FIG1, FIG4, FIG6
 
-__all__ = ["linearisation", "threshold", "linear_mu1", "FIGURE_GAINS", "plot_threshold", "tangent_basis"]
+__all__ = ["linearisation", "linearisation_from_system", "threshold", "linear_mu1", "FIGURE_GAINS", "plot_threshold", "tangent_basis"]
 
 #: the μ = 1 figures of section 6 and their gains (F = h·I), as the figure items declare them
 FIGURE_GAINS = {1: FIG1, 2: {**FIG1, "b": "-2"}, 4: FIG4}
@@ -131,6 +131,53 @@ def linearisation(values) -> LinearDelaySystem:
     D = sympy.zeros(5, 5)
     D[2:, :2] = -(b / n2) * Ti * Ux * E
     return LinearDelaySystem(A, kernel=[D], name="(10),(12) linearised, μ = 1")
+
+
+def linearisation_from_system(values) -> LinearDelaySystem:
+    """The same linearisation from the catalogued System (10), (12) itself (a second, independent path).
+
+    The simulator's right-hand side (:func:`lkverify.simulate.compile.compile_system`,
+    generated from the declared terms) carries the window integral as auxiliary states
+    z = ∫ g(x(ξ)) dξ with ż = g(x(t)) − g(x(t−τ)).  Its Jacobian at ω = 0, s = r, z = 0 (exact,
+    SymPy) gives ẋ = A₆x + (∂f/∂z)(∂g/∂x)∫x in (ω, s); the tangent coordinates of
+    :func:`linearisation` then give the 5-dimensional system.  Only for μ = 1 (g linear).
+
+    >>> from lkverify.proofs.aleksandrov2023.section6 import FIG1
+    >>> (linearisation_from_system(FIG1).A - linearisation(FIG1).A).is_zero_matrix
+    True
+    """
+    from lkverify.simulate.compile import compile_system
+    from .equations import system
+
+    v = P.resolve(dict(values), use_defaults=True)
+    if v["mu"] != 1:
+        raise InputError(f"mu: the linearisation at s = r needs μ = 1 (‖s − r‖^(μ−1) is not differentiable there "
+                         f"otherwise), got mu={v['mu']}")
+    comp = compile_system(system, dict(values))
+    sy = comp.symbolic
+    n, y = comp.n_states, list(sy["y"])
+    x, z = y[:n], y[n:]
+    state = {}
+    for name, sl in comp.layout.items():
+        target = [0, 0, 0] if name == "omega" else list(v["r"])
+        state.update({x[k]: target[k - sl.start] for k in range(sl.start, sl.stop)})
+    at = {**state, **{zk: 0 for zk in z}}
+    f = sympy.Matrix(sy["rhs"][:n])
+    A6 = f.jacobian(x).subs(at)
+    G = sympy.Matrix(sy["rhs"][n:]).jacobian(x).subs(at)      # ∂g/∂x (the x(t) part of ż)
+    D6 = f.jacobian(z).subs(at) * G
+    u, E = tangent_basis(v["r"])
+    nu = sympy.sqrt((u.T * u)[0])
+    T = sympy.zeros(n, 5)
+    L = sympy.zeros(5, n)
+    om, ss = comp.layout["omega"], comp.layout["s"]
+    T[om.start:om.stop, 2:] = sympy.eye(3)
+    T[ss.start:ss.stop, :2] = E / nu
+    L[2:, om.start:om.stop] = sympy.eye(3)
+    L[:2, ss.start:ss.stop] = nu * (E.T * E).inv() * E.T
+    A5 = (L * A6 * T).applyfunc(sympy.simplify)
+    D5 = (L * D6 * T).applyfunc(sympy.simplify)
+    return LinearDelaySystem(A5, kernel=[D5], name="(10),(12) linearised from the catalogued system, μ = 1")
 
 
 def _damping_family(values):

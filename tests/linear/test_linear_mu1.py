@@ -40,6 +40,20 @@ def test_linearisation_matches_an_independent_jacobian(number):
     assert sys.is_rational
 
 
+@pytest.mark.parametrize("number", [1, 2, 4])
+def test_linearisation_matches_the_catalogued_system(number):
+    from lkverify.proofs.aleksandrov2023.linear_mu1 import linearisation_from_system
+    a, b = linearisation_from_system(FIGURE_GAINS[number]), linearisation(FIGURE_GAINS[number])
+    assert (a.A - b.A).is_zero_matrix and (a.kernel[0] - b.kernel[0]).is_zero_matrix
+
+
+def test_catalogued_linearisation_refuses_mu_2():
+    from lkverify.errors import InputError
+    from lkverify.proofs.aleksandrov2023.linear_mu1 import linearisation_from_system
+    with pytest.raises(InputError, match="μ = 1"):
+        linearisation_from_system({**FIGURE_GAINS[1], "mu": "2"})
+
+
 def test_a_wrong_sign_of_b_is_a_different_system():
     A, D = _jacobian_reference({**FIGURE_GAINS[1], "b": "-2"})
     assert sympy.simplify(linearisation(FIGURE_GAINS[1]).kernel[0][:, :2] - D) != sympy.zeros(5, 2)
