@@ -207,7 +207,10 @@ def grid_rows(reg, grid) -> list:
     ds, dw = grid.s[1] - grid.s[0], grid.w[1] - grid.w[0]
     fine_s = np.linspace(0, grid.s[-1], 801)
     cert_area = float(_trapezoid(np.minimum(reg.w_boundary(fine_s), grid.w[-1]), fine_s))
-    sim_area = float(grid.converged.sum() * ds * dw)  # cells of the converged grid points
+    ws, ww = np.full(grid.s.size, ds), np.full(grid.w.size, dw)  # trapezoid weights: half cells at the edges
+    ws[[0, -1]] /= 2
+    ww[[0, -1]] /= 2
+    sim_area = float(np.sum(grid.converged * np.outer(ws, ww)))
     total = float(grid.s[-1] * grid.w[-1])
     ratio = cert_area / sim_area if sim_area else float("nan")
     rows = [Result("simulation", "certified set inside the converged grid", Status.FAILED if missed.any() else
