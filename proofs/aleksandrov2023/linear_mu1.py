@@ -53,6 +53,7 @@ Examples
 from __future__ import annotations
 
 import math
+import time
 
 import numpy as np
 import sympy
@@ -63,7 +64,8 @@ from lkverify.linear import LinearDelaySystem, certify_delay, rightmost_roots
 from .equations import PAPER, P
 from .section6 import FIG1, FIG4, FIG6
 
-__all__ = ["linearisation", "linearisation_from_system", "threshold", "linear_mu1", "FIGURE_GAINS", "plot_threshold", "tangent_basis"]
+__all__ = ["linearisation", "linearisation_from_system", "threshold", "threshold_curves", "linear_mu1", "FIGURE_GAINS",
+           "plot_threshold", "tangent_basis", "ThresholdJob"]
 
 #: the μ = 1 figures of section 6 and their gains (F = h·I), as the figure items declare them
 FIGURE_GAINS = {1: FIG1, 2: {**FIG1, "b": "-2"}, 4: FIG4}
@@ -285,10 +287,31 @@ def _check(values) -> list[Result]:
     return rows + _remark3_rows()
 
 
-def plot_threshold(path, *, a=2, taus=("0.5", "0.9", "1.5"), bs=None):
+def threshold_curves(a, taus, bs, *, budget: float | None = None) -> dict:
+    """h*(a, b, τ) on a grid of b for each τ: ``{τ: [h* or None, …]}`` (``estimated``); stops at the budget.
+
+    >>> curves = threshold_curves(2, ["0.9"], [2])
+    >>> curves["0.9"][0] <= H_MIN       # b = 2, bτ < a: every damping tried is enough
+    True
+    """
+    start = time.perf_counter()
+    out = {}
+    for tau in taus:
+        row = []
+        for b in bs:
+            if budget is not None and time.perf_counter() - start > budget:
+                row.append(math.nan)
+                continue
+            row.append(threshold(sympy.Rational(str(a)), sympy.Rational(str(b)), sympy.Rational(str(tau)))["h_star"])
+        out[str(tau)] = row
+    return out
+
+
+def plot_threshold(path, *, a=2, taus=("0.5", "0.9", "1.5"), bs=None, curves=None, points=None):
     """h*(a, b, τ) over b for several τ, with the Fig. 1 and Fig. 2 gains (h = 0.7) placed on it.
 
-    The (13) boundaries b = ±a/τ are dashed.  Returns the path written.
+    The (13) boundaries b = ±a/τ are dotted.  ``points``: extra (b, h, label) markers.
+    Returns the path written.
 
     >>> import os, tempfile
     >>> plot_threshold(os.path.join(tempfile.mkdtemp(), "h.png"), taus=("0.9",), bs=[-2, 2]).endswith("h.png")
@@ -299,20 +322,23 @@ def plot_threshold(path, *, a=2, taus=("0.5", "0.9", "1.5"), bs=None):
     import matplotlib.pyplot as plt
 
     bs = np.linspace(-2.5, 2.5, 21) if bs is None else np.asarray(bs, dtype=float)
+    curves = curves if curves is not None else threshold_curves(a, taus, bs)
     fig, ax = plt.subplots(figsize=(8, 4.8))
-    for k, tau in enumerate(taus):
-        tq = sympy.Rational(tau)
-        hs = [threshold(sympy.Rational(a), sympy.Rational(str(b)), tq)["h_star"] for b in bs]
-        ys = np.array([np.nan if x is None else x for x in hs])
+    for k, (tau, hs) in enumerate(curves.items()):
+        ys = np.array([np.nan if x is None else x for x in hs], dtype=float)
         floor = ys <= H_MIN   # stable at every damping tried: h* ≤ H_MIN, drawn on the floor
         ax.plot(bs, np.where(floor, np.nan, ys), "-o", ms=3, color=f"C{k}", label=f"h*(a = {a}, b, τ = {tau})")
         ax.plot(bs[floor], ys[floor], "v", ms=5, mfc="none", color=f"C{k}")
-        for sgn in (-1, 1):
-            ax.axvline(sgn * a / float(tq), color=f"C{k}", ls=":", lw=0.8)
-    for number, marker in ((1, "s"), (2, "X")):
-        g = P.resolve(dict(FIGURE_GAINS[number]), use_defaults=True)
-        ax.plot([float(g["b"])], [float(g["F"][0, 0])], marker, color="k", ms=9,
-                label=f"Fig. {number}: b = {g['b']}, h = {g['F'][0, 0]}")
+        if float(a) > 0:
+            for sgn in (-1, 1):
+                ax.axvline(sgn * float(a) / float(sympy.Rational(tau)), color=f"C{k}", ls=":", lw=0.8)
+    if points is None:
+        points = []
+        for number in (1, 2):
+            g = P.resolve(dict(FIGURE_GAINS[number]), use_defaults=True)
+            points.append((float(g["b"]), float(g["F"][0, 0]), f"Fig. {number}: b = {g['b']}, h = {g['F'][0, 0]}"))
+    for (b, h, label), marker in zip(points, ("s", "X", "D", "P")):
+        ax.plot([b], [h], marker, color="k", ms=9, label=label)
     ax.set_xlabel("b")
     ax.set_ylabel("damping threshold h* (F = h·I)")
     ax.set_yscale("log")
@@ -325,7 +351,42 @@ def plot_threshold(path, *, a=2, taus=("0.5", "0.9", "1.5"), bs=None):
     return str(path)
 
 
-linear_mu1 = Check("linear_mu1", parameters=P, checks=[_check], paper=PAPER, relevant=(),
+class ThresholdJob:
+    """``lkverify constants aleksandrov2023.linear_mu1 [--set a=… --set tau=…] [--plot f.png]``: h*(a, b, τ) over b.
+
+    For the run's a and τ (and τ/2, 3τ/2) on b ∈ [−2.5, 2.5]; each h* ``estimated``; the run's
+    own (b, h) is placed on the figure.
+
+    >>> ThresholdJob.goals
+    ('default',)
+    """
+
+    goals = ("default",)
+    bs = tuple(np.linspace(-2.5, 2.5, 21))
+
+    def run(self, name, values, shown, *, budget=150.0, progress=None, goal=None):
+        from lkverify.report.results import Report
+        a, tau, h = values["a"], values["tau"], values["F"][0, 0]
+        taus = [str(tau / 2), str(tau), str(3 * tau / 2)]
+        curves = threshold_curves(a, taus, self.bs, budget=budget)
+        rows = []
+        for t_, hs in curves.items():
+            for b, hstar in zip(self.bs, hs):
+                status = Status.UNDECIDED if isinstance(hstar, float) and math.isnan(hstar) else Status.ESTIMATED
+                text = ("budget spent" if status is Status.UNDECIDED else "unstable up to h = 6" if hstar is None
+                        else f"h* ≤ {H_MIN}" if hstar <= H_MIN else f"h* = {hstar:.4g}")
+                rows.append(Result("linear", f"h*(a = {a}, b = {b:.2f}, τ = {t_})", status,
+                                   None if status is Status.UNDECIDED else hstar, text))
+        verdict = "h*(a, b, τ) computed (spectral route, estimated)" if all(
+            r.status is Status.ESTIMATED for r in rows) else "undecided: the budget ran out"
+        extra = {"curves": curves, "a": a, "point": (float(values["b"]), float(h), f"this run: b = {values['b']}, h = {h}")}
+        return Report(name, shown, tuple(rows), verdict), extra
+
+    def plot(self, extra, path, values=None):
+        return plot_threshold(path, a=extra["a"], bs=self.bs, curves=extra["curves"], points=[extra["point"]])
+
+
+linear_mu1 = Check("linear_mu1", parameters=P, checks=[_check], paper=PAPER, relevant=(), constants=ThresholdJob(),
                    title="μ = 1: the linearisation at the Fig. 1, 2, 4 gains decided, the damping threshold h*(a, b, τ)")
 
 
