@@ -84,3 +84,17 @@ def test_item_runs():
     cert = next(r for r in rep.results if r.name.startswith("Fig. 1: LK"))
     assert cert.status.value == "exact"
     assert rep.exit_code == 0
+
+
+@pytest.mark.slow
+def test_threshold_job_reports_and_plots(tmp_path, monkeypatch):
+    from lkverify.proofs.aleksandrov2023.linear_mu1 import ThresholdJob
+    job = ThresholdJob()
+    monkeypatch.setattr(ThresholdJob, "bs", (-2.0, 2.0))
+    values = P.resolve({**FIGURE_GAINS[2]}, use_defaults=True)
+    rep, extra = job.run("aleksandrov2023.linear_mu1", values, {}, budget=60)
+    assert [r.status.value for r in rep.results] == ["estimated"] * 6
+    path = job.plot(extra, tmp_path / "h.png")
+    assert (tmp_path / "h.png").stat().st_size > 10_000 and path.endswith("h.png")
+    rep, _ = job.run("aleksandrov2023.linear_mu1", values, {}, budget=0)   # no time: undecided, never estimated
+    assert rep.verdict.startswith("undecided")
