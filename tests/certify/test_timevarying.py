@@ -177,3 +177,12 @@ def test_unknown_measures_and_symbolic_power_are_undecided(steps):
 def test_zero_or_negative_rate_fails(steps):
     assert TimeVaryingRate(("n",), "hh", 1, 0).certify(steps, P.resolve({}))[1] is Status.FAILED
     assert TimeVaryingRate(("n",), "hh", 1, -1).certify(steps, P.resolve({}))[1] is Status.FAILED
+
+
+def test_a_floating_point_exponent_is_never_rounded_to_a_rational():
+    import sympy as _sp
+    from lkverify.certify.steps.timevarying import sup_on as _sup_on
+    x = _sp.Symbol("x", positive=True)
+    bound, why = _sup_on(x ** _sp.Float(0.5) - 1, x, 1)
+    assert bound is None and "not a sum" in why
+    assert _sup_on(x ** _sp.Rational(1, 2) - 1, x, 1) == (0, None)

@@ -95,13 +95,16 @@ class UpperBound(Rule):
 
 # ---- bounds over 0 < x ≤ H, term by term -----------------------------------------------------------
 def _powers(expr, x):
-    """[(c, p)] with expr = Σ c·x^p, c free of x and p a number; None if expr is not of that form."""
+    """[(c, p)] with expr = Σ c·x^p, c free of x and p an exact number; None if expr is not of that form.
+
+    A floating-point exponent is not of that form: it is never rounded to a rational here.
+    """
     out = []
     for term in sympy.Add.make_args(sympy.expand(sympy.powsimp(sympy.expand(expr), force=True))):
         c, p = term.as_coeff_exponent(x)
-        if c.has(x) or not sympy.sympify(p).is_number or c.free_symbols:
+        if c.has(x) or not sympy.sympify(p).is_number or c.free_symbols or sympy.sympify(p).has(sympy.Float):
             return None
-        out.append((c, sympy.nsimplify(p) if isinstance(p, sympy.Float) else p))
+        out.append((c, p))
     return out
 
 
