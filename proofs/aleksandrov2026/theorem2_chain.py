@@ -65,7 +65,7 @@ from .theorem1_bound import MEASURES as _T1, L_norm_tree, M_norm_tree, Theta_w_t
 from .theorem1_chain import _homogeneous_estimate, _rational_above, _rational_below, lemma10
 
 __all__ = ["CONCLUSION", "MEASURES", "PRINTED_LOWER", "PRINTED_VDOT", "REGION", "chain_steps", "find_choices",
-           "printed_vdot_bound", "steps"]
+           "printed_upper", "printed_vdot_bound", "steps"]
 
 K = 2 * nu + 1  # k
 Pw = 2 * nu + 2  # P
@@ -333,6 +333,30 @@ PRINTED_LOWER = ((alpha1 * e1**2 + alpha2 * e2**2) / 2 + mu * (q1 + q2) + theta_
 PRINTED_VDOT = -(gamma * c6 * w**2 + epsilon * c11 * (e1**Pw + e2**Pw) + mu * (j1 + j2)) / 2
 
 
+def printed_upper():
+    """V ≤ 2(f + c4γ‖ω‖² + μ∫∫‖G‖W), c4 = θ_max/2: the upper bounds of V ≤ U, then Young on the cross terms.
+
+    e_iw ≤ (η_U e_i² + w²/η_U)/2 with η_U = 1/(2‖D⁻¹‖θ_max); R_j ≤ K̄^{1/P}Q_j^{k/P} (Hölder on the memory),
+    e_iQ_j^{k/P} ≤ η_K e_i^P/P + η_K^{−q/P}Q_j/q and e_i^P ≤ δ^{P−2}e_i²; the sum must be at most the
+    printed right-hand side (coefficient by coefficient, at the checked values).
+    """
+    qy, eta_U = Pw / K, 1 / (2 * Dinv_norm * theta_max)
+    bounds = list(_upper_bounds())
+    cs, memory = bounds[2], bounds[4]
+    bounds[2] = TermBound(cs.terms, Dinv_norm * theta_max * sum(a * (eta_U * e**2 / 2 + w**2 / (2 * eta_U))
+                                                                 for a, e in ((alpha1, e1), (alpha2, e2))),
+                          cs.rule, then=(YoungEach(((e1, w, 2, 2, eta_U), (e2, w, 2, 2, eta_U))),))
+    bounds[4] = TermBound(memory.terms, Dinv_norm * c10p * Kbar ** (1 / Pw) * sum(
+        a * (eta_K * delta ** (Pw - 2) * e**2 / Pw + eta_K ** (-qy / Pw) * q / qy)
+        for a, e in ((alpha1, e1), (alpha2, e2)) for q in (q1, q2)), memory.rule,
+        then=(MemoryHolder("R1", "Q1"), MemoryHolder("R2", "Q2"),
+              YoungEach(tuple((e, y, Pw, qy, eta_K) for e in (e1, e2) for y in _Qk)),
+              OnRegion("e1", 2), OnRegion("e2", 2)))
+    rhs = 2 * ((alpha1 * e1**2 + alpha2 * e2**2) / 2 + theta_max / 2 * gamma * w**2 + mu * (q1 + q2))
+    return TermwiseBound("V ≤ 2(f + c4γ‖ω‖² + μ∫∫‖G‖W)", functional, system_pid, "V", bounds, rhs, MEASURES,
+                         region=REGION, definitions=DEFINITIONS, witness_seconds=1.0)
+
+
 def _printed_gaps(lower_rhs, vdot_rhs):
     """(name, L − printed lower, printed V̇ − W): both must have every coefficient ≥ 0."""
     return (("V ≥ ½(f + μ∫∫‖G‖W + c1γ‖ω‖²)", lower_rhs - PRINTED_LOWER),
@@ -363,6 +387,8 @@ class _Conclusion(MemoryKrasovskii):
             rows.append(Result("bound", f"printed final estimate {name}", worst, None,
                                why or f"follows from the checked {'L' if 'V ≥' in name else 'W'}, coefficient by "
                                       f"coefficient ({worst})"))
+        up = printed_upper().check(values, search=False)
+        rows.append(Result("bound", f"printed final estimate {up.name}", up.status, None, up.detail))
         return rows, status, detail
 
 

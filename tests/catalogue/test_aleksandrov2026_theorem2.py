@@ -47,5 +47,5 @@ def test_theorem2_states_the_derivation_and_is_established_by_its_chain():
     assert vdot.status is Status.EXACT  # g left symbolic at the defaults: for every kernel
     assert rep.verdict.startswith("established"), rep.verdict  # the chain of theorem2_chain
     printed = [r for r in rep.results if r.name.startswith("printed final estimate")]
-    assert len(printed) == 2 and all(r.status.is_proof for r in printed)  # the paper's ½-estimates follow
+    assert len(printed) == 3 and all(r.status.is_proof for r in printed)  # the paper's final estimates follow
     assert "not yet checked" not in rep.verdict

@@ -55,7 +55,7 @@ def test_the_chain_is_proved_and_concludes(values):
     assert status.is_proof, detail
     assert rows[0].name == "memory measures bounded by the history's sup"
     printed = {r.name: r.status for r in rows if r.name.startswith("printed final estimate")}
-    assert len(printed) == 2 and all(s.is_proof for s in printed.values()), printed
+    assert len(printed) == 3 and all(s.is_proof for s in printed.values()), printed
     # the printed V̇ estimate without its factor ½ does not follow from this W
     from lkverify.proofs.aleksandrov2026 import theorem2_chain as chain
     from lkverify.certify.steps.chain import collect_monomials
@@ -196,3 +196,15 @@ def test_minus_c10_reading_is_refuted_by_a_constant_history_inside_the_region(va
             svals[int(name[1]) - 1]["xyz".index(name[-1])]
     value = evaluate_constant_integrals(term.xreplace(rep).subs(t, 1)).doit()
     assert not value.free_symbols and sign_of(value).sign == 1
+
+
+def test_printed_upper_estimate_and_a_too_small_c4(values):
+    from lkverify.proofs.aleksandrov2026.equations import gamma
+    from lkverify.proofs.aleksandrov2026.theorem2_chain import printed_upper, theta_min, w
+
+    step = printed_upper()
+    assert step.check(values, search=False).status.is_proof
+    # c4 = θ_min/4 instead of θ_max/2: V ≤ 2(f + c4γ‖ω‖² + …) no longer follows from these bounds
+    small = step.with_bounds(rhs=step.rhs - (step.rhs.coeff(w**2) - theta_min / 2 * gamma) * w**2)
+    res = small.check(values, search=False)
+    assert not res.status.is_proof and "do not add up" in res.detail

@@ -373,6 +373,9 @@ class TermwiseBound:
         slack = sympy.expand(ctx.at(rhs - total) if self.direction == "upper" else ctx.at(total - rhs))
         sum_ok = slack == 0 or nonnegative(slack)
         statuses = [r.status for r in results]
+        if not sum_ok:  # numeric coefficients of monomials in the measures: their signs, exact or in arb
+            sum_ok, how = _coefficients_nonnegative(slack, {m.symbol for m in self.measures})
+            statuses.append(how)
         worst = _weakest(statuses)
         if not sum_ok:
             status = Status.UNDECIDED if worst.is_proof else worst
@@ -675,6 +678,17 @@ def _prime_powers(expr):
                 and not x.exp.is_Integer and max(x.base.p, x.base.q) < 10**30)
 
     return sympy.sympify(expr).replace(wanted, split)
+
+
+def _coefficients_nonnegative(expr, symbols) -> tuple:
+    """(True, exact/certified) when every coefficient of ``expr`` is a number ≥ 0 (its monomials are ≥ 0)."""
+    worst = Status.EXACT
+    for mono, c in collect_monomials(expr, symbols).items():
+        sign, how = _coefficient_sign(c)
+        if sign is None or sign < 0 or not nonnegative(mono):
+            return False, Status.UNDECIDED
+        worst = Status.CERTIFIED if how is Status.CERTIFIED else worst
+    return True, worst
 
 
 def collect_monomials(expr, symbols) -> dict:
