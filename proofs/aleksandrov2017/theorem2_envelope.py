@@ -30,8 +30,8 @@ import sympy
 from lkverify import Status, t
 from lkverify.simulate import RunClaim
 
-from .equations import P, gamma, h, omega, s1, s2, s3
-from .theorem2 import functional2, mu, sigma, structured, system4
+from .equations import P, gamma, h
+from .theorem2 import functional2, sigma, structured, system4
 
 __all__ = ["Alpha8Estimate", "AlgebraicEnvelope", "LAMBDA", "algebraic_envelope", "estimate_alpha8"]
 
@@ -95,15 +95,21 @@ class Alpha8Estimate:
     status: Status = Status.ESTIMATED
 
 
-def _states(x):
-    """Rows of x = (ω, rotation vector) → (ω, s1, s2, s3) columns of the rotation, and the region's squared norm."""
+def _targets(values) -> np.ndarray:
+    """The resolved r1, r2, r3 as the columns of a 3×3 array."""
+    resolved = P.resolve(dict(values or {}))
+    return np.array([[float(c) for c in resolved[name]] for name in ("r1", "r2", "r3")]).T
+
+
+def _states(x, R0):
+    """Rows of x = (ω, rotation vector) → (ω, s_i = R r_i) components and ‖ω‖² + ‖s1−r1‖² + ‖s2−r2‖²."""
     from scipy.spatial.transform import Rotation
 
     x = np.atleast_2d(x)
-    R = Rotation.from_rotvec(x[:, 3:6]).as_matrix()
+    S = Rotation.from_rotvec(x[:, 3:6]).as_matrix() @ R0  # columns s1, s2, s3; s_i = r_i at the identity
     w = x[:, :3]
-    d2 = np.sum(w ** 2, 1) + np.sum((R[:, :, 0] - [1, 0, 0]) ** 2, 1) + np.sum((R[:, :, 1] - [0, 1, 0]) ** 2, 1)
-    cols = [w[:, i] for i in range(3)] + [R[:, i, j] for j in range(3) for i in range(3)]
+    d2 = np.sum(w ** 2, 1) + np.sum((S[:, :, 0] - R0[:, 0]) ** 2, 1) + np.sum((S[:, :, 1] - R0[:, 1]) ** 2, 1)
+    cols = [w[:, i] for i in range(3)] + [S[:, i, j] for j in range(3) for i in range(3)]
     return cols, d2
 
 
@@ -129,16 +135,17 @@ def estimate_alpha8(values=None, *, gamma_value: float, delta: float, h_max: flo
     import scipy.optimize
 
     fV, fVd, nu = _numeric(_key(values))
+    R0 = _targets(values)
     lam = float(LAMBDA)
     rng = np.random.default_rng(seed)
     x = rng.uniform(-delta, delta, size=(4 * samples, 6))           # (ω, rotation vector)
     x *= rng.uniform(0, 1, size=(len(x), 1)) ** 2                    # more points near the equilibrium
-    cols, d2 = _states(x)
+    cols, d2 = _states(x, R0)
     x = x[(d2 < delta ** 2) & (d2 > 0)][:samples]
     Hs = h_max * np.array([1e-6, 0.25, 0.5, 0.75, 1.0])
 
     def ratio(xx, Hv, rho):
-        c, _ = _states(xx)
+        c, _ = _states(xx, R0)
         return -fVd(*c, Hv, rho, gamma_value) / (Hv ** nu * fV(*c, Hv, rho, gamma_value) ** lam)
 
     found = []  # (ratio, point, h, ḣ/h) of the two worst samples at every (h, ḣ/h)
@@ -149,9 +156,9 @@ def estimate_alpha8(values=None, *, gamma_value: float, delta: float, h_max: flo
     found.sort(key=lambda f: f[0])
     best = found[0]
     for r0, x0, Hv, rho in found[:refine]:  # Nelder–Mead from the worst samples, kept inside the region
-        res = scipy.optimize.minimize(lambda z: _penalised(ratio, z, Hv, rho, delta), x0, method="Nelder-Mead",
+        res = scipy.optimize.minimize(lambda z: _penalised(ratio, z, Hv, rho, delta, R0), x0, method="Nelder-Mead",
                                       options={"maxiter": 300, "xatol": 1e-6, "fatol": 1e-9})
-        if res.fun < best[0] and _states(res.x)[1][0] < delta ** 2:
+        if res.fun < best[0] and _states(res.x, R0)[1][0] < delta ** 2:
             best = (float(res.fun), res.x, Hv, rho)
     _, xw, Hw, rhow = best
     return Alpha8Estimate(best[0], gamma_value, delta, h_max, tuple(float(r) for r in rho_range),
@@ -165,8 +172,8 @@ def _key(values) -> tuple:
                          for k, v in dict(values or {}).items()), key=lambda kv: kv[0]))
 
 
-def _penalised(ratio, z, Hv, rho, delta):
-    d2 = _states(z)[1][0]
+def _penalised(ratio, z, Hv, rho, delta, R0):
+    d2 = _states(z, R0)[1][0]
     return float(ratio(z, Hv, rho)[0]) if 0 < d2 < delta ** 2 else 1e9
 
 
@@ -182,9 +189,10 @@ def proof_V(values=None, *, gamma_value: float):
     return V
 
 
-def _region_norm2(states):
-    return (np.sum(states["omega"] ** 2, 1) + np.sum((states["s1"] - [1, 0, 0]) ** 2, 1)
-            + np.sum((states["s2"] - [0, 1, 0]) ** 2, 1))
+def _region_norm2(states, values):
+    R0 = _targets(values)
+    return (np.sum(states["omega"] ** 2, 1) + np.sum((states["s1"] - R0[:, 0]) ** 2, 1)
+            + np.sum((states["s2"] - R0[:, 1]) ** 2, 1))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -218,7 +226,7 @@ class AlgebraicEnvelope(RunClaim):
 
     def check(self, example, trajectories):
         tr = trajectories[self.run]
-        outside = np.nonzero(_region_norm2(tr.states) >= self.delta ** 2)[0]
+        outside = np.nonzero(_region_norm2(tr.states, tr.values) >= self.delta ** 2)[0]
         k0 = 0 if outside.size == 0 else int(outside[-1]) + 1
         if k0 >= len(tr.t) - 1:
             return self._res(False, None, f"the run does not settle in the region δ2 = {self.delta:g} by t = {tr.t[-1]:g}")

@@ -1,5 +1,6 @@
 """Theorem 2 of paper 001 (nonlinear damping, instance W = (ωᵀDω)²): V̇ exact for every h, mutations refuted,
-conditions (5), (15), (11) decided for the run's h."""
+conditions (5), (15), (11) decided for the run's h; the instance simulated for β = 7/8 and 8/7 (Corollary 2's
+dichotomy in tail windows) and the algebraic envelope with α8 estimated."""
 
 import dataclasses
 
@@ -115,3 +116,18 @@ def test_the_example_item_holds():
     rep = theorem2_example.run({})
     assert rep.holds, rep.as_text()
     assert [r.status for r in rep.results] == [Status.SIMULATED] * 6
+
+
+def test_the_floor_with_corollary2s_proved_rate_is_above_its_certified_bound(runs):
+    """Corollary 2 proves −dṼ/dt ≤ cṼ², c = 16: the measured rates must not exceed c, and the floor
+    extrapolated from Ṽ(T) with c must lie above the bound (1/Ṽ(0) + c∫_0^∞h)^{−1} from t = 0."""
+    from lkverify.proofs.aleksandrov2017 import P
+    from lkverify.proofs.aleksandrov2017.corollary2 import corollary2_constants, limit_energy_bound
+
+    c = corollary2_constants(P.resolve({}, use_defaults=True))
+    assert float(c["kappa"]) == ORDER
+    res = LimitAboveFloor(BOUNDED, _E, order=ORDER, rate=float(c["c"])).check(theorem2_example, runs)
+    assert res.status is Status.SIMULATED and "proved rate" in res.detail
+    assert max(res.value["rates"]) < c["c"]
+    V0 = float(remark2_energy()(runs[BOUNDED].states)[0])
+    assert res.value["energy_limit_lower"] > float(limit_energy_bound(V0, c["c"], c["kappa"], 7))
