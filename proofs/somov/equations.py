@@ -40,7 +40,7 @@ import sympy
 from lkverify import Equation, Parameters, System, Term, Vector, t
 
 __all__ = ["PAPER", "P", "J", "alpha", "beta", "a_m", "k0", "k1", "sigma", "omega", "I3", "cross_matrix", "B", "D",
-           "B_rate", "a_of", "v_of", "u_linear", "SC", "saturation_factor", "closed_loop", "sigma_s", "omega_s"]
+           "B_rate", "a_of", "v_of", "u_linear", "SC", "saturation_factor", "closed_loop", "closed_loop_10", "sigma_s", "omega_s"]
 
 PAPER = "somov"
 
@@ -163,3 +163,9 @@ closed_loop = System([
     Equation(omega, [Term(SC(u_linear(sigma_s, omega_s), a_m), text="SC(D(σ)(v − a), a_m)",
                           latex=r"\mathrm{SC}(D(\sigma)(v - a), a_m)")]),
 ], parameters=P, name="(3),(11)")
+
+# (3), (10): the same loop without the saturation (σ̈ = v exactly)
+closed_loop_10 = System([
+    Equation(sigma, [Term(B(sigma_s) * omega_s / 4, text="¼B(σ)ω", latex=r"\tfrac14 B(\sigma)\omega")]),
+    Equation(omega, [Term(u_linear(sigma_s, omega_s), text="D(σ)(v − a)", latex=r"D(\sigma)(v - a)")]),
+], parameters=P, name="(3),(10)")

@@ -5,10 +5,10 @@ J = diag(1000, 1200, 800) kg·m².  The initial attitude is a large rotation, Φ
 e0 = (2, 2, 1)/3 (:mod:`.kinematics`: σ0 = e0 tan(Φ0/4), |σ0| = 0.767 ≤ 1), with
 ω0 = (0.01, −0.02, 0.01) rad/s.  Three runs of the same symbolic closed loop:
 
-* ``saturating``: a_m = 1/100 — SC is active at the start (‖D(v − a)‖_∞ > a_m), the loop is
+* ``(11) saturating``: a_m = 1/100 — SC is active at the start (‖D(v − a)‖_∞ > a_m), the loop is
   (11), not (10);
-* ``not saturating``: a_m = 10 from the same state — SC never acts, the loop is (10), σ̈ = v,
-  so ‖V(t)‖e^{αt} stays constant (V̇ = AV of :mod:`.comparison`: checked along the run);
+* ``(10) without saturation``: the loop (3), (10) from the same state — σ̈ = v, so ‖V(t)‖e^{αt}
+  stays constant (V̇ = AV of :mod:`.comparison`: checked along the run); it asks for up to 2.8 a_m;
 * ``inside the certified region``: σ0 = 0.05e0 (Φ0 ≈ 11.4°), ω0 = 0, a_m = 1/100 — inside the
   region of :mod:`.region`; ‖V‖ must not increase and SC must stay inactive.
 
@@ -30,7 +30,7 @@ from lkverify.simulate import Converges, Run
 from lkverify.simulate.experiments import RunClaim
 
 from .comparison import jordan_transform
-from .equations import PAPER, P, closed_loop, omega, sigma, u_linear, sigma_s, omega_s, B
+from .equations import PAPER, P, B, closed_loop, closed_loop_10, omega, omega_s, sigma, sigma_s, u_linear
 from .kinematics import mrp_of
 
 __all__ = ["example", "HISTORY", "HISTORY_INSIDE", "saturation_ratio", "lyapunov_norm"]
@@ -122,11 +122,11 @@ class LinearDecay(RunClaim):
                          f"‖V(0)‖ = {Vn[0]:.4g}; largest relative rise between samples {rise:.2g}")
 
 
-SAT, LIN, INSIDE = "saturating (a_m = 1/100)", "not saturating (a_m = 10)", "inside the certified region"
+SAT, LIN, INSIDE = "(11): saturating", "(10): without saturation", "(11): inside the certified region"
 example = Example(
     "example",
     title="Paper 003: MRP feedback linearisation (10) with the saturation SC of (11)",
-    runs=[Run(SAT, closed_loop, {}, HISTORY), Run(LIN, closed_loop, {"a_m": 10}, HISTORY),
+    runs=[Run(SAT, closed_loop, {}, HISTORY), Run(LIN, closed_loop_10, {}, HISTORY),
           Run(INSIDE, closed_loop, {}, HISTORY_INSIDE)],
     t_end=150,
     series=[Series("σ_x", lambda S: S["sigma"][:, 0]), Series("σ_y", lambda S: S["sigma"][:, 1]),
@@ -134,8 +134,8 @@ example = Example(
             Series("SC factor c = min(1, a_m/‖D(v−a)‖_∞) (1: inactive)",
                    FromValues(lambda v: (lambda f: lambda S: np.minimum(1.0, 1.0 / f(S)))(saturation_ratio(v))))],
     distance=lambda S: np.sqrt(np.sum(S["sigma"] ** 2, axis=1) + np.sum(S["omega"] ** 2, axis=1)),
-    claims=[Converges(SAT), Converges(LIN), Converges(INSIDE), Saturates(SAT, True), Saturates(LIN, False),
-            Saturates(INSIDE, False), LinearDecay(LIN, True), LinearDecay(INSIDE, False)],
+    claims=[Converges(SAT), Converges(LIN), Converges(INSIDE), Saturates(SAT, True), Saturates(INSIDE, False),
+            LinearDecay(LIN, True), LinearDecay(INSIDE, False)],
     ylabel="σ, ‖V‖, c",
     samples=2001,
     paper=PAPER,
