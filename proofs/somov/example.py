@@ -24,7 +24,7 @@ import dataclasses
 import numpy as np
 import sympy
 
-from lkverify import FromValues, Result, Series, Status, t
+from lkverify import FromValues, Series, t
 from lkverify.catalogue.examples import Example
 from lkverify.simulate import Converges, Run
 from lkverify.simulate.experiments import RunClaim

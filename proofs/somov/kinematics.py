@@ -7,6 +7,7 @@ Text (section 1): Λ = (λ0, λ) = (cos(Φ/2), e sin(Φ/2)), σ = e tan(Φ/4), "
 
 * (6) from (1): σ̇ = d/dt[λ/(1 + λ0)] along λ̇0 = −½λ·ω, λ̇ = ½(λ0ω + λ×ω) equals ¼B(σ)ω — this
   fixes the sign of the 2[σ×] term of B (the extracted text lost every sign);
+* (3) as read from the text, σ̇ = ¼(1 − σ²)ω + ½σ×ω + ½(σ·ω)σ, is (6) written with the dyad;
 * BᵀB = (1 + σ²)²I (B/(1 + σ²) is a rotation), det B = (1 + σ²)³ > 0, D(σ)B(σ) = 4I: (7)
   inverts (6) for every σ;
 * the quaternion relations: λ0² + ‖λ‖² = 1 and λ/(1 + λ0) = σ, and σ = e tan(Φ/4) through the
@@ -64,6 +65,9 @@ def kinematics_results(Bf=B) -> list:
     sdot = (lamdot * (1 + l0) - lam * l0dot) / (1 + l0) ** 2
     rows.append(matrix_identity("(6) from (1)", sdot, Bf(s) * w / 4,
                                 text="d/dt[λ/(1+λ0)] along Λ̇ = ½Λ∘ω equals ¼B(σ)ω, B = (1−σ²)I + 2[σ×] + 2[σσ]"))
+    n2 = (s.T * s)[0]
+    rows.append(matrix_identity("(3) = (6)", (1 - n2) * w / 4 + s.cross(w) / 2 + (s.T * w)[0] * s / 2, Bf(s) * w / 4,
+                                text="(3) as read, σ̇ = ¼(1 − σ²)ω + ½σ×ω + ½(σ·ω)σ, equals (6) ¼B(σ)ω"))
     rows.append(matrix_identity("B^T B = (1+|sigma|^2)^2 I", Bf(s).T * Bf(s), (1 + _s2) ** 2 * I3,
                                 text="BᵀB = (1 + σ²)²I: B/(1 + σ²) is orthogonal"))
     rows.append(matrix_identity("det B = (1+|sigma|^2)^3", Bf(s).det(), (1 + _s2) ** 3,

@@ -18,7 +18,9 @@ g(r) = k0r + 2k0r² + 6k0r³ − a_m/4:
 (four direction pairs each, :mod:`.grid`) and compares: the certified set must lie inside the
 converged one (status ``simulated``), and the ratio of their areas in the (|σ0|, ‖ω0‖) rectangle is
 reported (``estimated``).  At the catalogued instance the certified set is |σ0| < 0.078 (Φ0 < 18°)
-at ω0 = 0 — the majorant is crude — while every sampled state with |σ0| ≤ 1 converges.
+at ω0 = 0 — the majorant is crude — while every sampled state with |σ0| ≤ 1 and ‖ω0‖ ≤ 0.25 rad/s
+converges (area ratio ≈ 0.006); faster initial spins carry the body through Φ = 2π, where the MRP of
+this law (no switching to the shadow set) runs off to infinity.
 """
 
 from __future__ import annotations
