@@ -45,7 +45,7 @@ from .theorem1_bound import DEFINITIONS, _ctx_eig, c1, c2, c3, c4, c5, c6, c7, c
     gradient_tree
 from .theorem1_functional import J_int, K_int, derivation, functional
 
-__all__ = ["CONCLUSION", "MEASURES", "REGION", "chain_steps", "find_choices", "steps", "k_tau", "tau_j"]
+__all__ = ["CONCLUSION", "MEASURES", "REGION", "chain_steps", "find_choices", "printed_p3", "steps", "k_tau", "tau_j"]
 
 W_ = norm_measure("w", v(t), text="‖q̇(t)‖")
 E_ = norm_measure("e", q(t), text="‖q(t)‖")
@@ -152,8 +152,43 @@ def chain_steps():
 
 steps = chain_steps()
 
-#: the conclusion: V ≥ φ(‖x(t)‖), V ≤ U(‖x_t‖), V̇ ≤ −ψ(‖x(t)‖) with x(t) = (q̇, q)
-CONCLUSION = Krasovskii(("w", "e"))
+# ---- the printed (П.3) against the checked W ---------------------------------------------------------
+def printed_p3(k11_value):
+    """(П.3): −½(λc7‖q̇‖² + c11‖q‖^{μ+1} + β∫‖q‖^{μ+1}) with c11 = −k11 (the certified constant of the steps)."""
+    return -(lam * c7 * w**2 - k11_value * e ** (mu + 1) + beta * j ** (mu + 1)) / 2
+
+
+class _Conclusion(Krasovskii):
+    """Krasovskii's sign test, and the printed (П.3) compared with the checked W coefficient by coefficient."""
+
+    def certify(self, steps, values, **kw):
+        from lkverify import Result, Status
+        from lkverify.certify.steps.chain import _coefficient_sign, collect_monomials
+        from lkverify.declare.parameters import apply_substitution
+
+        rows, status, detail = super().certify(steps, values, **kw)
+        if not status.is_proof:  # compared only on a region where the chain concludes
+            return rows, status, detail
+        step, res = steps["vdot"]
+        sub = dict(system3.parameters.substitution(values))
+        sub.update(step.named_constants(values))
+        gap = printed_p3(sympy.Rational(res.constants["k11"])) - res.rhs
+        gap = sympy.expand(apply_substitution(sympy.sympify(gap).xreplace(sub), sub))
+        worst, why = Status.EXACT, ""
+        for mono, coeff in collect_monomials(gap, {m.symbol for m in MEASURES}).items():
+            sign, st = _coefficient_sign(coeff)
+            if sign is None or sign < 0:
+                worst = Status.UNDECIDED if sign is None else Status.FAILED
+                why = f"the coefficient of {mono} in W exceeds the printed one by {-float(coeff):.4g}"
+                break
+            worst = Status.CERTIFIED if st is Status.CERTIFIED else worst
+        rows.append(Result("bound", "printed (П.3) V̇ ≤ −½(λc7‖q̇‖² + c11‖q‖^{μ+1} + β∫‖q‖^{μ+1})", worst, None,
+                           why or f"follows from the checked W, coefficient by coefficient ({worst})"))
+        return rows, status, detail
+
+
+#: the conclusion: V ≥ φ(‖x(t)‖), V ≤ U(‖x_t‖), V̇ ≤ −ψ(‖x(t)‖) with x(t) = (q̇, q); and (П.3) compared
+CONCLUSION = _Conclusion(("w", "e"))
 
 
 # ---- the free choices -----------------------------------------------------------------------
@@ -196,8 +231,8 @@ def _estimates(values):
 def find_choices(values) -> dict:
     """λ, α, β, δ_q, δ_v, η_w, η_K, η, η_j for which every coefficient of L, U, W has its sign (exact strings).
 
-    The recipe follows the proof: λ large (λc7/2 beats c8 and the Young remainders, λc1
-    beats c3²/c2), α = c11/4, β = c11/(4τ) (so α + βτ = c11/2), the η's split the ‖q̇‖²
+    The recipe follows the proof and aims at its (П.3): λ large (λc7/2 beats c8 and the Young
+    remainders, λc1 beats c3²/c2), α = c11/8, β = c11/(8τ) (so α + βτ = c11/4), the η's split the ‖q̇‖²
     budget, then δ_q is the largest value (three digits, times 0.9) that keeps every
     δ-term below half its budget (needs μ > 1 and 2σ > μ + 1; returns {} otherwise).  When
     Π + τΠ̃ is not positive definite (c11 ≤ 0) the recipe runs with c11 = 0.01, and the chain
@@ -218,8 +253,8 @@ def find_choices(values) -> dict:
     am, aM, bm, kt, mu_, sg, tau_ = c["a_min"], c["a_max"], c["b_min"], c["kt"], c["mu"], c["sigma"], c["tau"]
     lam_ = _above(1.2 * max(4 * aM / bm, 8 * aM**2 / (am * bm)))
     L = float(lam_)
-    alpha_ = _below(c["c11"] / 4)
-    beta_ = _below(c["c11"] / (4 * tau_))
+    alpha_ = _below(c["c11"] / 8)  # α + βτ = c11/4: (П.3)'s −c11/2 leaves c11/4 for the δ-terms
+    beta_ = _below(c["c11"] / (8 * tau_))
     eta_w_ = _above(2 * aM / (L * am))  # c3/(2η_w) ≤ λc1/2
     cj = L * kt * c["tau_j"] + kt * c["k_tau"]  # the coefficient of w·j^μ
     eta_ = _below(bm / (4 * (c["c9"] + c["p0"])))  # (λc9 + λp0)η/2 ≤ λc7/8
@@ -233,8 +268,8 @@ def find_choices(values) -> dict:
     eta_K_ = (sympy.sympify(values["kappa_t"]) * kt_x * mu_x / ((mu_x + 1) * alpha_)) ** mu_x
     e9 = (L * (c["c9"] + c["p0"]))
     cands = [0.5,
-             # e^{μ+1}: (λc9)δ^{μ−1}/(2η) + λp0 δ^{2σ−μ−1}/(2η) ≤ c11/4
-             (c["c11"] * float(eta_) / (2 * e9)) ** (1 / max(min(mu_ - 1, 2 * sg - mu_ - 1), 1e-9)),
+             # e^{μ+1}: (λc9)δ^{μ−1}/(2η) + λp0 δ^{2σ−μ−1}/(2η) ≤ c11/8
+             (c["c11"] * float(eta_) / (4 * e9)) ** (1 / max(min(mu_ - 1, 2 * sg - mu_ - 1), 1e-9)),
              # j^{μ+1}: c_j (τ^{1/(μ+1)}δ)^{μ−1}/(2η_j) ≤ β/2
              (float(beta_) * float(eta_j_) / cj) ** (1 / (mu_ - 1)) / c["tau_j"],
              # e² in L: c4 k_τ η_K δ^{μ−1}/(μ+1) ≤ c2/4

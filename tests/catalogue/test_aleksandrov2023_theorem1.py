@@ -235,3 +235,22 @@ def test_corollary1_is_declared_for_p_of_the_corollary():
 
     assert DECAY.p == (P3.resolve({}, use_defaults=True)["mu"] + 1) / 2
     assert "μ = 2" in COROLLARY1_CONSTANTS.applies({"mu": 2})
+
+
+def test_printed_p3_follows_from_the_checked_w_and_without_its_half_it_does_not():
+    from lkverify.certify.steps.chain import collect_monomials
+    from lkverify.declare.parameters import apply_substitution
+
+    vals = P3.resolve(TC.find_choices(P3.resolve({}, use_defaults=True)), use_defaults=True)
+    step = TC.steps[2]
+    res = step.check(vals, budget=30)
+    sub = {**P3.substitution(vals), **step.named_constants(vals)}
+    k11 = sympy.Rational(res.constants["k11"])
+    meas = {m.symbol for m in TC.MEASURES}
+
+    def gap(printed):
+        g = sympy.expand(apply_substitution(sympy.sympify(printed - res.rhs).xreplace(sub), sub))
+        return [float(c) for c in collect_monomials(g, meas).values()]
+
+    assert min(gap(TC.printed_p3(k11))) >= 0  # (П.3) as printed follows from W
+    assert min(gap(2 * TC.printed_p3(k11))) < 0  # without the ½ it does not (this chain)
