@@ -332,7 +332,12 @@ def _at(values, expr):
 
 
 def operator_norm_above(M) -> sympy.Rational:
-    """A rational κ ≥ ‖M‖ (κ²I − MᵀM ⪰ 0 is then decided exactly where κ is used)."""
+    """A rational κ ≥ ‖M‖ (κ²I − MᵀM ⪰ 0 is then decided exactly where κ is used); ∞ if M is not finite.
+
+    (B⁻¹ at a singular B: the hypotheses fail, and the steps must still run without an error.)
+    """
+    if not all(sympy.sympify(e).is_finite for e in sympy.Matrix(M)):
+        return sympy.oo
     return _sqrt_above(extreme_eigenvalue(sympy.Matrix(M).T * sympy.Matrix(M), "max"))
 
 
@@ -529,19 +534,28 @@ def _estimates(values) -> dict:
     return est
 
 
-def _coefficients(step, values, est, choices):
-    """{monomial: float coefficient} of the step's rhs at the values, the estimates and the choices."""
+def _rhs(step, values, est, choices):
+    """The step's rhs at the values, the estimated constants and the choices (a float expression)."""
     sub = {**{_C[k]: v for k, v in est.items()}, **{k: float(v) for k, v in step.named_constants(values).items()}}
-    rhs = sympy.expand(_at({**values, **choices}, step.rhs).xreplace(sub))
-    poly = sympy.Poly(rhs, *[m.symbol for m in MEASURES if rhs.has(m.symbol)] or [wx])
+    return sympy.expand(_at({**values, **choices}, step.rhs).xreplace(sub))
+
+
+def _coefficients(rhs):
+    """{monomial: float coefficient} of an rhs in the measures."""
+    poly = sympy.Poly(rhs, *[m.symbol for m in MEASURES])
     return {sympy.Mul(*[g**e for g, e in zip(poly.gens, mono)]): float(c) for mono, c in poly.terms()}
 
 
-def _signs_hold(values, est, choices) -> bool:
-    L, U, W = (_coefficients(s_, values, est, choices) for s_ in steps)
+def _signs_hold(L, U, W) -> bool:
+    L, U, W = _coefficients(L), _coefficients(U), _coefficients(W)
     return (all(c >= 0 for c in L.values()) and L.get(wx**2, 0) > 0 and L.get(ey**2, 0) > 0
             and all(c >= 0 for c in U.values())
             and all(c < 0 for c in W.values()) and W.get(wx**2, 0) < 0 and W.get(ey**4, 0) < 0)
+
+
+#: the choices when A or B is singular (nothing to choose: the hypotheses fail and the chain with them)
+FALLBACK = {"alpha1": "1/100", "beta1": "1/100", "alpha2": "1/100", "beta2": "1/100", "eta": "1/100", "eta_L": "1/100",
+            "delta": "1/1000"}
 
 
 def find_choices(values) -> dict:
@@ -555,6 +569,8 @@ def find_choices(values) -> dict:
     """
     from .theorem1_chain import _below
 
+    if _at(values, A).det() == 0 or _at(values, B).det() == 0:  # (П.4) undefined: the hypotheses fail first
+        return dict(FALLBACK)
     est = _estimates(values)
     v = {k: float(c) for k, c in steps[2].named_constants(values).items()}
     tau_ = float(_at(values, tau))
@@ -562,17 +578,18 @@ def find_choices(values) -> dict:
     ch = {"alpha1": _below(m14_ / 8), "beta1": _below(m14_ / (8 * tau_)),
           "alpha2": _below(m24_ / 8), "beta2": _below(m24_ / (8 * tau_)), "delta": sympy.S.Zero,
           "eta": sympy.S.One, "eta_L": sympy.S.One}
-    wx2 = {k: c for k, c in _coefficients(steps[2], values, est, {**ch, "eta": 1}).items()}
-    base = {k: c for k, c in _coefficients(steps[2], values, est, {**ch, "eta": sympy.Rational(1, 2)}).items()}
-    C = 2 * (wx2.get(wx**2, 0) - base.get(wx**2, 0))   # the coefficient of η in the wx² coefficient (δ = 0)
+    W = _rhs(steps[2], values, est, {**ch, "delta": 0, "eta": 1}).coeff(wx, 2)
+    W2 = _rhs(steps[2], values, est, {**ch, "delta": 0, "eta": 2}).coeff(wx, 2)
+    C = float(W2 - W)  # the coefficient of η in the wx² coefficient of W (δ = 0)
     ch["eta"] = _below(m14_ / (4 * max(C, 1e-9)))
-    l1 = _coefficients(steps[0], values, est, {**ch, "eta_L": 1}).get(ey**2, 0)
-    l0 = _coefficients(steps[0], values, est, {**ch, "eta_L": sympy.Rational(1, 2)}).get(ey**2, 0)
-    CL = 2 * (l0 - l1)
-    ch["eta_L"] = _below(float(v[s2m]) / (2 * max(CL, 1e-9)))
+    l1 = _rhs(steps[0], values, est, {**ch, "eta_L": 1}).coeff(ey, 2)
+    l2 = _rhs(steps[0], values, est, {**ch, "eta_L": 2}).coeff(ey, 2)
+    ch["eta_L"] = _below(float(v[s2m]) / (2 * max(float(l1 - l2), 1e-9)))
+    d_ = sympy.Symbol("d_", positive=True)
+    rhs = [_rhs(s_, values, est, {**ch, "delta": d_}) for s_ in steps]
     d = sympy.Rational(1, 10)
-    for _ in range(60):
-        if _signs_hold(values, est, {**ch, "delta": d}):
+    for _ in range(30):
+        if _signs_hold(*(r.subs(d_, d) for r in rhs)):
             break
         d /= 2
     ch["delta"] = _below(float(d))
