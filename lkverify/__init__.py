@@ -45,6 +45,7 @@ from .catalogue.examples import Example
 from .certify.constants import ConstantsJob, Template
 from .linear import (LinearDelaySystem, certified_interval, certify_delay, linear_report, rightmost_roots,
                      stability_intervals)
+from .linear import linearise, linearise_at
 from .simulate import (BoundedNotAttractive, Converges, DoesNotConverge, EnvelopeSpec, FasterThan, FromValues, Run,
                        Sensitive, Series, SmootherThan, StepControl)
 
@@ -64,6 +65,7 @@ __all__ = [
     # linear delay systems (linear)
     "LinearDelaySystem", "certified_interval", "certify_delay", "linear_report", "rightmost_roots",
     "stability_intervals",
+    "linearise", "linearise_at",
 ]
 
 __version__ = "0.1.0"

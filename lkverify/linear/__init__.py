@@ -15,6 +15,8 @@
     one certificate for every delay of an interval (concavity in h: exact; else arb pieces);
 :mod:`.margin`
     the largest (and smallest) delay of a stability interval with a verified certificate, by bisection;
+:mod:`.linearise`
+    a catalogued System linearised at an equilibrium, exactly (tangent coordinates of unit vectors and frames);
 :mod:`.run`, :mod:`.figures`
     the job of ``lkverify linear`` (one :class:`lkverify.report.Report`) and its figure.
 """
@@ -24,6 +26,7 @@ from .hierarchy import (LmiCertificate, LmiResult, certify_delay, check_certific
                         solve_certificate)
 from .interval import IntervalCertificate, certify_cover, certify_interval
 from .margin import CertifiedInterval, certified_interval
+from .linearise import Linearisation, linearise, linearise_at, tangent_basis
 from .model import LinearDelaySystem, parse_delay
 from .run import linear_report, system_from_values
 from .figures import plot_linear
@@ -34,4 +37,5 @@ __all__ = [
     "IntervalCertificate", "certify_cover", "certify_interval", "method_name", "quick_check", "solve_certificate", "linear_report", "plot_linear", "system_from_values",
     "Crossing", "LinearDelaySystem", "Spectrum", "StabilityIntervals", "crossing_frequencies", "generator_matrix",
     "parse_delay", "rightmost_roots", "spectral_abscissa", "stability_intervals",
+    "Linearisation", "linearise", "linearise_at", "tangent_basis",
 ]

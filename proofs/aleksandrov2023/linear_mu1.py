@@ -59,7 +59,7 @@ import numpy as np
 import sympy
 
 from lkverify import Check, InputError, Result, Status
-from lkverify.linear import LinearDelaySystem, certify_delay, rightmost_roots
+from lkverify.linear import LinearDelaySystem, certify_delay, linearise, rightmost_roots, tangent_basis
 
 from .equations import PAPER, P
 from .section6 import FIG1, FIG4, FIG6
@@ -78,28 +78,6 @@ BISECTIONS = 18
 NODES = 16
 #: order of the LMI certificate at a stable figure (1 = Wirtinger)
 LMI_ORDER = 1
-
-
-def tangent_basis(r):
-    """(u, E): a rational u ∥ r (r/r_k for the first nonzero r_k) and a rational basis E of u^⊥.
-
-    >>> u, E = tangent_basis(sympy.Matrix([1, 1, 1]) / sympy.sqrt(3))
-    >>> list(u), E.T * u
-    ([1, 1, 1], Matrix([
-    [0],
-    [0]]))
-    """
-    r = sympy.Matrix(r)
-    k = next(i for i in range(3) if r[i] != 0)
-    u = (r / r[k]).applyfunc(sympy.simplify)
-    others = [j for j in range(3) if j != k]
-    cols = []
-    for j in others:
-        e = sympy.zeros(3, 1)
-        e[j] = 1
-        e[k] = -u[j] / u[k]
-        cols.append(e)
-    return u, sympy.Matrix.hstack(*cols)
 
 
 def _cross_matrix(u):
@@ -138,48 +116,28 @@ def linearisation(values) -> LinearDelaySystem:
 def linearisation_from_system(values) -> LinearDelaySystem:
     """The same linearisation from the catalogued System (10), (12) itself (a second, independent path).
 
-    The simulator's right-hand side (:func:`lkverify.simulate.compile.compile_system`,
-    generated from the declared terms) carries the window integral as auxiliary states
-    z = ∫ g(x(ξ)) dξ with ż = g(x(t)) − g(x(t−τ)).  Its Jacobian at ω = 0, s = r, z = 0 (exact,
-    SymPy) gives ẋ = A₆x + (∂f/∂z)(∂g/∂x)∫x in (ω, s); the tangent coordinates of
-    :func:`linearisation` then give the 5-dimensional system.  Only for μ = 1 (g linear).
+    :func:`lkverify.linear.linearise` reads the simulator's right-hand side (generated from the
+    declared terms; the window integral as an auxiliary state z = ∫ g(x(ξ)) dξ with
+    ż = g(x(t)) − g(x(t−τ))), takes its exact Jacobians at ω = 0, s = r, z = τ·g(r) = 0 and
+    writes s in the tangent coordinates δs = E y/‖u‖ of :func:`linearisation` (``order``: y
+    first, then δω).  Only for μ = 1: for μ > 1 the torque is O(‖s − r‖^μ) and the general
+    function returns the degenerate linearisation (no stiffness, no delay term), for μ < 1 it
+    refuses (not differentiable).
 
     >>> from lkverify.proofs.aleksandrov2023.section6 import FIG1
     >>> (linearisation_from_system(FIG1).A - linearisation(FIG1).A).is_zero_matrix
     True
     """
-    from lkverify.simulate.compile import compile_system
     from .equations import system
 
     v = P.resolve(dict(values), use_defaults=True)
     if v["mu"] != 1:
-        raise InputError(f"mu: the linearisation at s = r needs μ = 1 (‖s − r‖^(μ−1) is not differentiable there "
-                         f"otherwise), got mu={v['mu']}")
-    comp = compile_system(system, dict(values))
-    sy = comp.symbolic
-    n, y = comp.n_states, list(sy["y"])
-    x, z = y[:n], y[n:]
-    state = {}
-    for name, sl in comp.layout.items():
-        target = [0, 0, 0] if name == "omega" else list(v["r"])
-        state.update({x[k]: target[k - sl.start] for k in range(sl.start, sl.stop)})
-    at = {**state, **{zk: 0 for zk in z}}
-    f = sympy.Matrix(sy["rhs"][:n])
-    A6 = f.jacobian(x).subs(at)
-    G = sympy.Matrix(sy["rhs"][n:]).jacobian(x).subs(at)      # ∂g/∂x (the x(t) part of ż)
-    D6 = f.jacobian(z).subs(at) * G
-    u, E = tangent_basis(v["r"])
-    nu = sympy.sqrt((u.T * u)[0])
-    T = sympy.zeros(n, 5)
-    L = sympy.zeros(5, n)
-    om, ss = comp.layout["omega"], comp.layout["s"]
-    T[om.start:om.stop, 2:] = sympy.eye(3)
-    T[ss.start:ss.stop, :2] = E / nu
-    L[2:, om.start:om.stop] = sympy.eye(3)
-    L[:2, ss.start:ss.stop] = nu * (E.T * E).inv() * E.T
-    A5 = (L * A6 * T).applyfunc(sympy.simplify)
-    D5 = (L * D6 * T).applyfunc(sympy.simplify)
-    return LinearDelaySystem(A5, kernel=[D5], name="(10),(12) linearised from the catalogued system, μ = 1")
+        raise InputError(f"mu: expected μ = 1 (the case of linearisation()), got mu={v['mu']}; for μ > 1 the "
+                         f"linearisation at s = r has no stiffness and no delay term, for μ < 1 the torque is not "
+                         f"differentiable there (lkverify.linear.linearise says which)")
+    lin = linearise(system, {"omega": [0, 0, 0], "s": "r"}, dict(values), order=("s", "omega"))
+    return LinearDelaySystem(lin.A, Ad=lin.Ad, kernel=list(lin.kernel),
+                             name="(10),(12) linearised from the catalogued system, μ = 1")
 
 
 def _damping_family(values):
