@@ -271,11 +271,11 @@ def _window_parts(vec):
 
 
 class WindowCubicNorm(Norm):
-    """‖∫_{t−τ}^t g(ξ)F(x(ξ), y(ξ))dξ‖ ≤ max g·(κ03·J3 + κ12(Ix + Iy)/2 + (κ21 + κ30)δ·Ix).
+    """‖∫_{t−τ}^t g(ξ)F(x(ξ), y(ξ))dξ‖ ≤ max g·(κ03·J3 + κ12(Ix + Iy)/2 + (κ21δy + κ30δx)·Ix).
 
     F is split by bidegree (exact); ‖F_ab(x, y)‖ ≤ κ_ab‖x‖^a‖y‖^b with κ_ab certified over the torus, then
-    pointwise: ‖x‖‖y‖² ≤ (‖x‖² + ‖y‖⁴)/2 (AM–GM), ‖x‖²‖y‖, ‖x‖³ ≤ δ‖x‖² on the region (‖x(ξ)‖, ‖y(ξ)‖ ≤ δ
-    on the window); the weight g ≥ 0 is affine in ξ, so max g is at an end of the window.  Only parts
+    pointwise: ‖x‖‖y‖² ≤ (‖x‖² + ‖y‖⁴)/2 (AM–GM), ‖x‖²‖y‖ ≤ δy‖x‖², ‖x‖³ ≤ δx‖x‖² on the region
+    (‖x(ξ)‖ ≤ δx, ‖y(ξ)‖ ≤ δy on the window); the weight g ≥ 0 is affine in ξ, so max g is at an end of the window.  Only parts
     of total degree 3 are accepted.  Build with :func:`window_cubic_norm`.
     """
 
@@ -296,19 +296,20 @@ class WindowCubicNorm(Norm):
                            or None, "not shown"))
         if not all(c.status.is_proof for c in conds):
             return None, conds
-        gmax = ends[0] if sympy.simplify(ends[0] - ends[1]).is_nonnegative else ends[1]
+        first = sympy.simplify(ends[0] - ends[1]).is_nonnegative
+        gmax = ends[0] if first else ends[1] if first is False else ends[0] + ends[1]  # both ≥ 0: the sum bounds
         kappas, more = _norm_bound(Fx, list(_xs), list(_ys), ctx, what)
         conds += more
         if kappas is None:
             return None, conds
         if not _register(ctx, prefix, kappas, _CUBIC, conds):
             return None, conds
-        h = _window_sup(ctx, _xs)
-        conds.append(_cond("the region bounds ‖x(ξ)‖ on the window [t − τ, t]", h is not None))
+        hx, hy = _window_sup(ctx, _xs), _window_sup(ctx, _ys)
+        conds.append(_cond("the region bounds ‖x(ξ)‖, ‖y(ξ)‖ on the window [t − τ, t]", hx is not None and hy is not None))
         if not all(c.status.is_proof for c in conds):
             return None, conds
-        k = kappas
-        total = k[(0, 3)] * j3 + k[(1, 2)] * (Ix + Iy) / 2 + (k[(2, 1)] + k[(3, 0)]) * h * Ix
+        k = kappas  # ‖x‖²‖y‖ ≤ δy‖x‖², ‖x‖³ ≤ δx‖x‖², ‖x‖‖y‖² ≤ (‖x‖² + ‖y‖⁴)/2
+        total = k[(0, 3)] * j3 + k[(1, 2)] * (Ix + Iy) / 2 + (k[(2, 1)] * hy + k[(3, 0)] * hx) * Ix
         return sympy.expand(gmax * total), conds
 
 
