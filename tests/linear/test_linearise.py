@@ -189,3 +189,10 @@ def test_flipped_sign_gives_another_linearisation():
     gains = FIGURE_GAINS[1]
     lin = linearise(system_002, AT_R, {**gains, "b": "-2"}, order=("s", "omega"))
     assert lin.kernel != linearisation(gains).kernel and lin.kernel[0] == -linearisation(gains).kernel[0]
+
+
+def test_linear_mu1_row_is_exact():
+    from lkverify import Status
+    from lkverify.proofs.aleksandrov2023.linear_mu1 import _from_system_row
+    row = _from_system_row(1)
+    assert row.status is Status.EXACT and row.value is True
