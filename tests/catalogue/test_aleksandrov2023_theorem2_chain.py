@@ -80,6 +80,14 @@ def test_the_printed_final_estimates_hold_at_the_choices():
     assert any(c > 0 for c in sympy.Poly(full, *[m.symbol for m in ch.MEASURES]).coeffs())
 
 
+def test_the_chain_holds_at_another_instance_and_other_functional_matrices():
+    over = {"g": "1/4", "d2": "3/2", "S2": "diag(2,1)"}  # another circulatory part, delay term and V2
+    steps = _checked(**over)
+    assert all(res.status.is_proof for _, res in steps.values()), [r.detail for _, r in steps.values()]
+    rows, status, detail = ch.CONCLUSION.certify(steps, _values(**over)[0])
+    assert status.is_proof, detail
+
+
 def test_a_wrong_constant_is_refuted_by_a_witness():
     step = _checked()["vdot"][0]
     m14 = ch.m14
