@@ -112,6 +112,7 @@ def test_skew_bound_4_needs_p0_above_max_phi():
 
 
 # ---- the item ---------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_the_item_fails_on_an_indefinite_potential():
     rep = theorem1.run({"pi04": "-1/2"}, budget=60)
     assert rep.exit_code == 1 and rep.verdict.startswith("failed: hypotheses")
