@@ -22,6 +22,13 @@ in the measures wx = ‖x(t)‖, ey = ‖y(t)‖, Ix = ∫‖x(ξ)‖²dξ, Iy =
   cubic maps by :class:`WindowCubicNorm`; then Young (η) and the region, where the order condition
   1 < (ν2+μ−1)/ν1 < μ is what makes every cross term small.
 
+Against the paper: the printed two-sided estimate before Young (c5 = λ_min(S1), c6 = λ_min(S2), c8 = λ_max(S1),
+c9 = λ_max(S2), c7 = 2‖B⁻¹‖‖S2‖κ_D with ‖D(y)‖ ≤ κ_D‖y‖³) is proved in the printed form, and at the choices the
+proof's final estimates ½(c6‖y‖² + α2∫‖y‖⁴) + c5‖x‖² + α1∫‖x‖² ≤ L and W ≤ −½(m14‖x‖² + m24‖y‖⁴ + β1∫‖x‖² +
+β2∫‖y‖⁴) hold coefficient by coefficient (:data:`PRINTED_L`, :data:`PRINTED_W`); no printed step is refuted.
+The ε1/h1, ε2/h2 splitting is not needed here: every part of bidegree (a, b) of the cubic terms is of higher
+order than −m14‖x‖² − m24‖y‖⁴ by itself (the (1, 3) parts after Young), which is the order condition.
+
 The conclusion is Krasovskii's theorem on the coefficients of L, U, W.  The choices α1, β1, α2, β2,
 η, η_L, δ are found at the run's values by :func:`find_choices` (floating point only picks them;
 every step is proved at those exact values).
