@@ -196,3 +196,12 @@ def test_linear_mu1_row_is_exact():
     from lkverify.proofs.aleksandrov2023.linear_mu1 import _from_system_row
     row = _from_system_row(1)
     assert row.status is Status.EXACT and row.value is True
+
+
+def test_orthonormal_basis_rational_when_r_allows():
+    r = sympy.Matrix([sympy.Rational(3, 5), sympy.Rational(4, 5), 0])
+    values = {**FIGURE_GAINS[1], "r": r}
+    lin = linearise_at(system_002, {"omega": [0, 0, 0], "s": r}, values, coordinates="orthonormal")
+    B = lin.T[3:, 3:]
+    assert B.T * B == sympy.eye(2) and B.T * r == sympy.zeros(2, 1)
+    assert all(e.is_Rational for e in lin.system.A) and all(e.is_Rational for e in lin.system.kernel[0])
