@@ -23,7 +23,8 @@ The reduction is checked exactly: T L must fix the image of every Jacobian on th
 space (the manifold is invariant for the linear part), else the input is refused.
 
 Where a Jacobian entry is undefined by substitution (0·∞, e.g. f^ν L with ν < 1 at f = 0,
-or ‖s − r‖^{μ−1}(s × r) with 1 < μ < 2), it is taken as the partial derivative by its
+or ‖s − r‖^{μ−1}(s × r) with 1 < μ < 2), or a kink (|·|, sign, min, max, a piecewise
+definition) sits at the point, it is taken as the partial derivative by its
 definition, the one-sided limits of the difference quotient (SymPy ``limit``, exact); an
 infinite or two-valued limit means the right-hand side is not differentiable there and the
 point is refused.  Such entries are listed in :attr:`Linearisation.limits`: partial
@@ -178,13 +179,14 @@ def linearise_at(system, equilibrium: Mapping, values: Mapping | None = None, *,
     point = _point(system, equilibrium, values, name)
     n = comp.n_states
     sy = comp.symbolic
-    x, z = list(sy["y"][:n]), list(sy["y"][n:])
-    Zh = list(sy["Z"][0]) if comp.exact_lags else []
+    real = {v: sympy.Dummy(v.name, real=True) for v in [*sy["y"], *(z for row in sy["Z"] for z in row)]}
+    x, z = [real[v] for v in sy["y"][:n]], [real[v] for v in sy["y"][n:]]
+    Zh = [real[v] for v in sy["Z"][0]] if comp.exact_lags else []
     limits: list = []
     zstar = [a.exact_lag * _g_at(a, system, point, limits) for a in comp.aux]
     at = {**dict(zip(x, point)), **dict(zip(Zh, point)), **dict(zip(z, zstar))}
-    f = sympy.Matrix(sy["rhs"][:n])
-    gnow = sympy.Matrix(sy["rhs"][n:]) if z else sympy.zeros(0, 1)
+    f = sympy.Matrix(sy["rhs"][:n]).xreplace(real)          # real states: d|x|/dx = sign(x), not re/im parts
+    gnow = sympy.Matrix(sy["rhs"][n:]).xreplace(real) if z else sympy.zeros(0, 1)
     residual = [_value(e, at, limits, _component(system, i)) for i, e in enumerate(f)]
     bad = [(i, r) for i, r in enumerate(residual) if not _is_zero(r)]
     if bad:
@@ -274,7 +276,7 @@ def _g_at(aux, system, point, limits) -> sympy.Expr:
     rep, at = {}, {}
     for a in aux.g.atoms(AppliedUndef):
         if a.func in funcs:
-            rep[a] = sympy.Dummy(str(a.func))
+            rep[a] = sympy.Dummy(str(a.func), real=True)
             at[rep[a]] = point[start[funcs[a.func][0].name] + funcs[a.func][1]]
     g = _value(aux.g.xreplace(rep), at, limits, "g")
     if g.free_symbols:
@@ -318,7 +320,7 @@ def _jacobian(F, syms, at, limits, system, what):
             if s not in Fi.free_symbols:
                 continue
             d = sympy.diff(Fi, s).xreplace(at)
-            if not _finite(d):
+            if not _finite(d) or _kink_at(Fi, at):
                 row = _component(system, i) if what != "g" else f"g_{i + 1}"
                 label = f"∂({row})/∂{what if what != 'g' else 'x(ξ)'}_{j + 1}"
                 if base is None:
@@ -327,6 +329,27 @@ def _jacobian(F, syms, at, limits, system, what):
                 limits.append(f"{label} = {d}")
             J[i, j] = d
     return J
+
+
+#: functions whose derivative SymPy writes finitely even where they have a kink (|x|' = sign(x), sign(0) = 0)
+_KINKS = (sympy.Abs, sympy.sign, sympy.Heaviside, sympy.Piecewise, sympy.Min, sympy.Max, sympy.floor, sympy.ceiling)
+
+
+def _kink_at(F, at) -> bool:
+    """True when a non-smooth function of F has its kink at the point (its arguments hit a switching value)."""
+    for k in F.atoms(*_KINKS):
+        if isinstance(k, sympy.Piecewise):
+            return True
+        args = [sympy.simplify(a.xreplace(at)) for a in k.args]
+        if isinstance(k, (sympy.Min, sympy.Max)):
+            if any(_is_zero(a - b) for i, a in enumerate(args) for b in args[i + 1:]):
+                return True
+        elif isinstance(k, (sympy.floor, sympy.ceiling)):
+            if args[0].is_integer is not False:
+                return True
+        elif not (args[0].is_zero is False):
+            return True
+    return False
 
 
 def _partial_by_limit(Fi, s, at, base, what):

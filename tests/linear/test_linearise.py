@@ -205,3 +205,14 @@ def test_orthonormal_basis_rational_when_r_allows():
     B = lin.T[3:, 3:]
     assert B.T * B == sympy.eye(2) and B.T * r == sympy.zeros(2, 1)
     assert all(e.is_Rational for e in lin.system.A) and all(e.is_Rational for e in lin.system.kernel[0])
+
+
+def test_kink_refused_and_smooth_abs_away_from_it():
+    P = Parameters()
+    x = Vector("x", 1)
+    sys = System([Equation(x, [Term(-sympy.Abs(x(t - 1)[0]) - x(t)[0])])], parameters=P, name="kink")
+    with pytest.raises(InputError, match="differentiable"):      # SymPy alone would say d|x|/dx = sign(0) = 0
+        linearise(sys, {"x": [0]}, {})
+    sys2 = System([Equation(x, [Term(sympy.Abs(x(t - 1)[0]) - x(t)[0] ** 2)])], parameters=P, name="away")
+    lin = linearise(sys2, {"x": [1]}, {})
+    assert lin.A == sympy.Matrix([[-2]]) and lin.Ad == sympy.Matrix([[1]])
