@@ -164,10 +164,12 @@ def certified_interval(system: LinearDelaySystem, interval, *, order: int = 2) -
     status = (Status.EXACT if all(r.status is Status.EXACT for r in ends) else Status.CERTIFIED) if ok \
         else Status.UNDECIDED
     seconds = time.perf_counter() - t0
-    where = (f"[{float(down.h):.7g}, {float(up.h):.7g}]" if down is not None else f"h ≤ {float(up.h):.7g}")
-    detail = (f"{name}: certified at {where} (each reported end re-verified: "
+    where = (f"the delays h = {float(down.h):.7g} and h = {float(up.h):.7g}" if down is not None
+             else f"the delay h = {float(up.h):.7g}")
+    detail = (f"{name}: stability certified at {where} (each re-verified: "
               f"{'; '.join(r.detail for r in ends)}); {counter[0]} SDP solves, {seconds:.2f} s. "
-              "Each end is a delay with its own rational certificate.") if ok else (
+              "Each reported delay has its own rational certificate; the delays between are not covered by "
+              "them (lkverify.linear.certify_interval covers a whole interval).") if ok else (
         f"{name}: the ends did not verify: {'; '.join(r.detail for r in ends)}")
     return CertifiedInterval(order, name, float(down.h) if ok and down is not None else None,
                              float(up.h) if ok else None, down, up, status, counter[0], seconds, detail)
