@@ -5,7 +5,11 @@ Everything that is not a polynomial operation becomes an *atom*: a state value
 form first), a function value, an integral after linear normalisation (integrand
 expanded, factors free of the integration variable pulled out), and the inverse
 ``z = 1/b`` of every polynomial denominator ``b`` (``det F``, ``A``), recorded
-with the relation ``z·b − 1 = 0``.  An expression is then a polynomial in
+with the relation ``z·b − 1 = 0``.  Non-integer powers of a sum ``B`` whose exponents differ
+by integers (``B^{(σ−3)/2}``, ``B^{(σ−1)/2}``, ``B^{(σ+1)/2}``) share one atom ``a = B^{e0}``,
+``e0`` the smallest such exponent among the expressions put in normal form together, and
+become ``a·B^k``, ``k ≥ 0``: no inverse of ``B`` is needed (its relation ``z·B − 1`` with
+the constraints of ``B``'s variables makes Gröbner bases very costly).  An expression is then a polynomial in
 parameter symbols and atoms; its normal form is the remainder modulo a Gröbner
 basis of the constraint polynomials (‖s‖ = 1, orthonormal frames, unit constant
 vectors) and the inverse relations.
@@ -82,6 +86,8 @@ class Canonicalizer:
         self._gb_cache: dict = {}
         self._memo: dict = {}
         self._constraint_memo: dict = {}
+        self._power_floor: dict = {}  # (normal base, exponent class) -> integer offset of the class's atom
+        self._power_hint: dict = {}  # (base as written, exponent class) -> smallest offset in the expressions
 
     # -- atoms ---------------------------------------------------------------------------
     def _atom_for(self, expr) -> sympy.Dummy:
@@ -119,7 +125,7 @@ class Canonicalizer:
         if isinstance(e, sympy.Add):
             return sympy.Add(*[self.atomize(a) for a in e.args])
         if isinstance(e, sympy.Mul):
-            return sympy.Mul(*[self.atomize(a) for a in e.args])
+            return sympy.Mul(*[self.atomize(a) for a in self._merge_powers(e.args)])
         if isinstance(e, sympy.Pow):
             exp = sympy.expand(e.exp)
             if exp.is_Integer and exp > 0:
@@ -131,15 +137,19 @@ class Canonicalizer:
             if value.is_Rational:
                 return value
             # b^(e' + c): split the integer part n = ⌊c⌋ of the constant c off the exponent,
-            # so that h^(ν−1), h^ν/h and h^ν·h^(−1) all become atom(h^(ν + c − n))·b^n.
+            # so that h^(ν−1), h^ν/h and h^ν·h^(−1) all become atom(h^(ν + c − n))·b^n; for a sum b the
+            # atom is b^(e' + c − n + n0), n0 the smallest offset of the class (see _scan_powers): a·b^(n − n0)
             const, _ = exp.as_coeff_Add()
             n = sympy.floor(const) if const.is_Rational else sympy.S.Zero
+            rest = sympy.expand(exp - n)
+            n0 = self._class_offset(e.base, base, rest) if isinstance(base, sympy.Add) else 0
+            n -= n0
+            rest = sympy.expand(rest + n0)
             if n != 0:
-                rest = sympy.expand(exp - n)
                 power = self._atom_for(sympy.Pow(base, rest, evaluate=False)) if rest != 0 else sympy.S.One
                 factor = sympy.Pow(self.atomize(base), n) if n > 0 else sympy.Pow(self._inverse(base), -n)
                 return power * factor
-            return self._atom_for(sympy.Pow(base, exp, evaluate=False))
+            return self._atom_for(sympy.Pow(base, exp if n0 == 0 else rest, evaluate=False))
         if isinstance(e, sympy.Integral):
             return self._integral(e)
         if isinstance(e, AppliedUndef):
@@ -147,6 +157,53 @@ class Canonicalizer:
         if isinstance(e, (sympy.Function, sympy.Derivative, sympy.Subs)):
             return self._atom_for(e)
         raise UnsupportedInput(f"cannot put {type(e).__name__} in normal form: {e}; identities support polynomial operations, powers, integrals and function values")
+
+    @staticmethod
+    def _power_class(exp) -> tuple:
+        """(exp − n, n), n = ⌊c⌋ for the constant c of the exponent: exponents differing by integers share a class."""
+        const, _ = sympy.expand(exp).as_coeff_Add()
+        n = int(sympy.floor(const)) if const.is_Rational else 0
+        return sympy.expand(exp - n), n
+
+    def _class_offset(self, written, base, rest) -> int:
+        """The offset n0 of the class (base, rest), fixed when first needed: the smallest hint whose base normalises to it."""
+        key = (base, rest)
+        if key not in self._power_floor:
+            hints = [n for (b, r), n in self._power_hint.items() if r == rest and (b == written or
+                                                                                   self.normal_expr(b) == base)]
+            self._power_floor[key] = min([0] + hints)
+        return self._power_floor[key]
+
+    def _merge_powers(self, factors) -> list:
+        """Factors ``B^p`` (B a sum, p not a positive integer) of one base in normal form multiplied together.
+
+        ``B^((σ−1)/2) · B'^(−1)`` with B' another spelling of B becomes ``B^((σ−3)/2)`` (one class atom, no
+        inverse of B); the factors are returned as they are when no two share a base.
+        """
+        candidates = [f for f in factors if isinstance(f, sympy.Pow) and isinstance(f.base, sympy.Add)
+                      and not (f.exp.is_Integer and f.exp > 0)]
+        if len(candidates) < 2:
+            return list(factors)
+        groups: dict = {}
+        for f in candidates:
+            groups.setdefault(self.normal_expr(f.base), []).append(f.exp)
+        if all(len(v) == 1 for v in groups.values()):
+            return list(factors)
+        others = [f for f in factors if not any(f is c for c in candidates)]
+        return others + [sympy.Pow(b, sympy.expand(sympy.Add(*v))) for b, v in groups.items()]
+
+    def _scan_powers(self, exprs) -> None:
+        """Hints for :meth:`_class_offset`: the smallest offset of every non-integer power of a sum, as written.
+
+        Bases are not normalised here (that would create atoms in another order than the expressions
+        do, and the lex order of the ring follows the atoms' creation).
+        """
+        for expr in exprs:
+            for e in sympy.preorder_traversal(expr):
+                if isinstance(e, sympy.Pow) and isinstance(e.base, sympy.Add) and not sympy.expand(e.exp).is_Integer:
+                    rest, n = self._power_class(e.exp)
+                    key = (e.base, rest)
+                    self._power_hint[key] = min(n, self._power_hint.get(key, n))
 
     def _inverse(self, base):
         """The atom z standing for 1/base, with the relation z·base − 1 recorded."""
@@ -285,6 +342,7 @@ class Canonicalizer:
         forms are equal (the converse holds when no relation between atoms is
         missing).
         """
+        self._scan_powers(exprs)
         atomized = [self.atomize(e) for e in exprs]
         self.deadline.check()
         gens: set = set()

@@ -29,9 +29,10 @@ from .equations import PAPER, D, J, P, a1, a2, eta, gamma, h, nu, omega, r1, r2,
 
 __all__ = ["W", "grad_W", "functional2", "derivation2", "system4", "theorem2", "mu", "sigma"]
 
-#: the catalogued instance: W = (ωᵀDω)², homogeneous of order μ + 1 = 4, and σ = μ = 3 in V.  (With μ, σ
-#: symbolic, or half-integer, ‖η‖^{σ−1} and (ωᵀDω)^{(μ+1)/2} are not polynomial and the identity checker
-#: does not decide the claim within a minute; for these integers it is exact in about a second.)
+#: the catalogued instance: W = (ωᵀDω)², homogeneous of order μ + 1 = 4, and σ = μ = 3 in V.  For these integers
+#: the identity is exact in seconds.  With σ a symbol it is exact too (about 20 s of CPU, a slow test of
+#: tests/catalogue/test_aleksandrov2017_theorem2.py: ‖η‖^{σ−3}, ‖η‖^{σ−1}, ‖η‖^{σ+1} share one atom in the normal
+#: forms); μ symbolic or half-integer ((ωᵀDω)^{(μ+1)/2} not polynomial) has not been tried.
 mu = sympy.Integer(3)
 sigma = sympy.Integer(3)
 

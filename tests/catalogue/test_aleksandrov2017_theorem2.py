@@ -131,3 +131,37 @@ def test_the_floor_with_corollary2s_proved_rate_is_above_its_certified_bound(run
     assert max(res.value["rates"]) < c["c"]
     V0 = float(remark2_energy()(runs[BOUNDED].states)[0])
     assert res.value["energy_limit_lower"] > float(limit_energy_bound(V0, c["c"], c["kappa"], 7))
+
+
+# -- V̇ with σ symbolic (powers ‖η‖^{σ−3}, ‖η‖^{σ−1}, ‖η‖^{σ+1} share one atom in the normal forms) --------------------
+def _sigma_claim(mutate=False):
+    import copy
+    import importlib
+
+    import sympy
+
+    from lkverify import DerivativeClaim, Functional, System, dot, norm_squared, quad, t
+    from lkverify.proofs.aleksandrov2017.equations import P, J, eta, gamma, h, nu, omega
+
+    T2 = importlib.import_module("lkverify.proofs.aleksandrov2017.theorem2")
+    P2 = copy.deepcopy(P)                        # paper 001's parameters and a symbolic σ > 0
+    sg = P2.scalar("sigma", positive=True)
+    e2, hd, M = norm_squared(eta), sympy.Derivative(h(t), t), T2.M
+    system = System(T2.system4.equations, parameters=P2, name="(2),(4)")
+    V = Functional([*T2.functional2.terms[:3],
+                    Term(gamma * h(t) ** nu * e2 ** ((sg - 1) / 2) * quad(omega(t), J, eta), text="γh^ν‖η‖^{σ−1}ωᵀJη")])
+    third = (sg - 2) if mutate else (sg - 1)     # the mutation: (σ−2) for the chain-rule factor (σ−1)
+    terms = [Term(-(T2.mu + 1) * h(t) * T2.W, text="−(μ+1)hW"),
+             Term(gamma * nu * h(t) ** (nu - 1) * hd * e2 ** ((sg - 1) / 2) * quad(omega(t), J, eta), text="ḣ"),
+             Term(-gamma * third * h(t) ** nu * e2 ** ((sg - 3) / 2) * dot(eta, M) * quad(omega(t), J, eta), text="σ−1"),
+             Term(-gamma * h(t) ** nu * e2 ** ((sg - 1) / 2) * dot(omega(t).cross(J * omega(t)), eta), text="ω×Jω"),
+             Term(-gamma * h(t) ** (nu + 1) * e2 ** ((sg - 1) / 2) * dot(T2.grad_W, eta), text="grad W"),
+             Term(-gamma * h(t) ** nu * e2 ** ((sg + 1) / 2), text="‖η‖^{σ+1}"),
+             Term(-gamma * h(t) ** nu * e2 ** ((sg - 1) / 2) * quad(omega(t), J, M), text="ωᵀJM")]
+    return DerivativeClaim("Vdot_sigma", V, system, terms)
+
+
+@pytest.mark.slow  # about 20 s of CPU (1 min on a loaded machine): the identity with σ symbolic, a mutation
+def test_vdot_with_symbolic_sigma_is_exact_and_a_mutation_is_refuted():
+    assert _sigma_claim().check({}, values={}, budget=300).status is Status.EXACT
+    assert _sigma_claim(mutate=True).check({}, values={}, budget=300).status is Status.FAILED
