@@ -21,7 +21,9 @@ README = Path(__file__).resolve().parents[2] / "README.md"
 #: commands whose run takes more than a few seconds (long simulations, the bare report, estimate (15))
 SLOW = ("lkverify simulate", "lkverify report", "lkverify constants aleksandrov2023",
         "lkverify constants aleksandrov2017.lemma1 --plot", "lkverify check aleksandrov2026.theorem1",
-        "lkverify check aleksandrov2026.remark1", "lkverify constants aleksandrov2026.remark1")
+        "lkverify check aleksandrov2026.remark1", "lkverify constants aleksandrov2026.remark1",
+        "lkverify check aleksandrov2023.theorem", "lkverify check aleksandrov2017.theorem1",
+        'lkverify linear --set "A=[[-2,0],[0,-0.9]]" --set "Ad=[[-1,0],[-1,-1]]" --plot', "lkverify constants somov")
 
 
 def _console_lines():
