@@ -82,6 +82,17 @@ class Linearisation:
         The ambient Jacobians ``A``, ``Ad``, ``D`` (in the simulator's state order).
     limits : tuple of str
         The Jacobian entries taken as limits (undefined by substitution).
+
+    Examples
+    --------
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
+    >>> P = Parameters(); x = Vector("x", 2)
+    >>> sys = System([Equation(x, [Term(sympy.Matrix([x(t)[1], -x(t)[0] - x(t)[1] ** 3]))])], parameters=P)
+    >>> lin = linearise_at(sys, {"x": [0, 0]})
+    >>> lin.system.A, lin.delay, lin.labels
+    (Matrix([
+    [ 0, 1],
+    [-1, 0]]), None, ('x_1', 'x_2'))
     """
 
     system: LinearDelaySystem
@@ -132,6 +143,16 @@ def linearise(system, equilibrium: Mapping, values: Mapping | None = None, *, co
     """The linearisation of ``system`` at ``equilibrium``, exact, as a :class:`LinearDelaySystem`.
 
     See :func:`linearise_at` (which also returns the delay, the coordinates and the lift).
+
+    Examples
+    --------
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
+    >>> P = Parameters(); k = P.scalar("k", default=2); tau = P.delay("tau", default=1)
+    >>> x = Vector("x", 1)
+    >>> sys = System([Equation(x, [Term(-x(t)[0] - k * x(t - tau)[0] ** 3 + k * x(t - tau)[0])])], parameters=P)
+    >>> lin = linearise(sys, {"x": [0]})                 # ẋ = −x + k x(t−τ) near 0
+    >>> lin.A, lin.Ad
+    (Matrix([[-1]]), Matrix([[2]]))
     """
     return linearise_at(system, equilibrium, values, coordinates=coordinates, order=order).system
 
@@ -162,6 +183,20 @@ def linearise_at(system, equilibrium: Mapping, values: Mapping | None = None, *,
         coefficient without a value, several different delays, not differentiable at the point.
     UnsupportedInput
         Memory integrals or other integrals than windows of the states.
+
+    Examples
+    --------
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
+    >>> P = Parameters(); tau = P.delay("tau", default=2)
+    >>> x = Vector("x", 1)
+    >>> sys = System([Equation(x, [Term(1 - x(t)[0] * x(t - tau)[0])])], parameters=P)
+    >>> lin = linearise_at(sys, {"x": [1]})              # x ≡ 1: ẋ ≈ −ξ(t) − ξ(t−τ)
+    >>> lin.system.A, lin.system.Ad, lin.delay
+    (Matrix([[-1]]), Matrix([[-1]]), 2)
+    >>> linearise_at(sys, {"x": [2]})
+    Traceback (most recent call last):
+    ...
+    lkverify.errors.InputError: system: expected an equilibrium (ẋ = 0), got the residual ... at the given point; give a point where the right-hand side vanishes
     """
     from ..simulate.compile import compile_system
 

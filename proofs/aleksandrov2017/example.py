@@ -14,7 +14,7 @@ from lkverify.simulate.figures import AngleHistory, FigureExample, show_value, s
 from lkverify.simulate.rigidbody import DEFAULT_CONVENTION, inertial_vectors_from_angles
 
 from .equations import PAPER, P, gamma, system
-from .theorem1 import functional
+from .theorem1_functional import functional
 
 __all__ = ["example", "HISTORY", "INITIAL", "initial_history", "remark2_energy", "distance", "per_vector_distance"]
 

@@ -47,7 +47,7 @@ from lkverify.declare.rigidbody import restoring_torque_rate
 
 from .conditions_h import decide_h_conditions
 from .equations import P, D, J, a1, a2, eps, eta, gamma, h, nu, omega, r1, r2, s1, s2, system
-from .theorem1 import functional, printed_Vdot
+from .theorem1_functional import functional, printed_Vdot
 
 __all__ = ["CONCLUSION", "EnvelopeAgainstRun", "REGION", "chain_steps", "condition10", "condition11", "split",
            "find_choices", "lemma6", "steps"]

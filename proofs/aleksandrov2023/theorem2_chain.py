@@ -41,16 +41,16 @@ import dataclasses
 import numpy as np
 import sympy
 
-from lkverify import Status, t, xi
+from lkverify import t, xi
 from lkverify.certify.steps.chain import Krasovskii, TermBound, TermwiseBound
 from lkverify.certify.steps.measures import Region, norm_measure, sup_norm, window_integral_measure
 from lkverify.certify.steps.rewrites import OnRegion, WindowHolder, YoungEach
-from lkverify.certify.steps.rules import (Application, CauchySchwarz, Condition, Equal, Nonpositive, Norm, Rayleigh,
-                                          Rule, WindowWeight, _cond, _sign, mapped, measured, summed)
+from lkverify.certify.steps.rules import (Application, CauchySchwarz, Equal, Nonpositive, Norm, Rayleigh,
+                                          Rule, WindowWeight, decided, mapped, measured, sign_of, summed)
 
 from .decomposition import A, B, D, P2, Q, q_of_xy, system_P4, tau, x, y
 from .theorem1_bound import extreme_eigenvalue
-from .theorem2 import S1, S2, alpha1, alpha2, beta1, beta2, derivation, functional
+from .theorem2_functional import S1, S2, alpha1, alpha2, beta1, beta2, derivation, functional
 
 __all__ = ["CONCLUSION", "MEASURES", "REGION", "BidegreeParts", "CubicNorm", "WindowCubicNorm", "chain_steps",
            "find_choices", "steps", "delta", "eta", "eta_L"]
@@ -100,17 +100,17 @@ def _certified_sup(q, th, ctx, what):
 
     q = sympy.sympify(q)
     if q.free_symbols.isdisjoint(th):
-        return (q, _cond(f"{what} = {q} (constant)", True)) if q.is_Rational else \
-            (None, _cond(f"{what} is a rational constant", None, f"got {q}"))
+        return (q, decided(f"{what} = {q} (constant)", True)) if q.is_Rational else \
+            (None, decided(f"{what} is a rational constant", None, f"got {q}"))
     if q not in _SUPS:
         box = {s: (0, 2 * sympy.pi) for s in th}
         res = sup_bound(q, box, accuracy=Accuracy(rel_gap=2e-2), enclosure="mean-value",
                         budget=Budget(seconds=ctx.seconds_left(), boxes=20_000))
         if res.certified is None or not res.certified < float("inf"):
-            return None, _cond(f"{what} certified", None, "no finite certified bound in the budget", certified=True)
+            return None, decided(f"{what} certified", None, "no finite certified bound in the budget", certified=True)
         _SUPS[q] = (sympy.Rational(res.certified), f"certified, estimate {res.estimate:.6g}")
     kappa, text = _SUPS[q]
-    return kappa, _cond(f"{what} ≤ {float(kappa):.6g} ({text})", True, certified=True)
+    return kappa, decided(f"{what} ≤ {float(kappa):.6g} ({text})", True, certified=True)
 
 
 def _norm_bound(F, xv, yv, ctx, what):
@@ -174,12 +174,12 @@ class BidegreeParts(Rule):
         xv, yv = list(ctx.at(mx.vector)), list(ctx.at(my.vector))
         e = sympy.expand(ctx.at(term))
         others = {a for a in e.atoms(sympy.core.function.AppliedUndef)} - set(xv) - set(yv)
-        conds = [_cond("the term is a polynomial in the two measured vectors", not others and not e.has(sympy.Integral),
+        conds = [decided("the term is a polynomial in the two measured vectors", not others and not e.has(sympy.Integral),
                        f"it involves {sorted(map(str, others))[:3]}")]
         if not conds[0].status.is_proof:
             return Application(self.name, None, tuple(conds))
         found, th = _torus([e], xv, yv)
-        conds.append(_cond(f"its bidegrees are among {list(self.parts)}", set(found) <= set(self.parts),
+        conds.append(decided(f"its bidegrees are among {list(self.parts)}", set(found) <= set(self.parts),
                            f"it has the parts {sorted(found)}"))
         keep = dict(self.keep)
         hx, hy = _region(ctx, mx), _region(ctx, my)
@@ -193,7 +193,7 @@ class BidegreeParts(Rule):
                 return Application(self.name, None, tuple(conds))
             a2, b2 = keep.get((a, b), (a, b))
             if (a2, b2) != (a, b):
-                conds.append(_cond(f"lowered on the region: ‖x‖^{a}‖y‖^{b} ≤ {hx}^{a - a2}·{hy}^{b - b2}·"
+                conds.append(decided(f"lowered on the region: ‖x‖^{a}‖y‖^{b} ≤ {hx}^{a - a2}·{hy}^{b - b2}·"
                                    f"‖x‖^{a2}‖y‖^{b2} (a part ≤ 0 is bounded by 0)",
                                    hx is not None and hy is not None and 0 <= a2 <= a and 0 <= b2 <= b))
                 if hx is None or hy is None:
@@ -214,7 +214,7 @@ class CubicNorm(Norm):
 
     def resolve(self, vec, ctx, vector):
         xname, yname, keep, what, prefix, expected = self.data
-        conds = [_cond(f"the vector is {what}", all(ctx.zero(a - b) for a, b in zip(vec, ctx.at(self.vector))),
+        conds = [decided(f"the vector is {what}", all(ctx.zero(a - b) for a, b in zip(vec, ctx.at(self.vector))),
                        f"{list(vec)} is not it")]
         if not conds[0].status.is_proof:
             return None, conds
@@ -230,7 +230,7 @@ class CubicNorm(Norm):
         for (a, b), k in kappas.items():
             a2, b2 = keep.get((a, b), (a, b))
             if (a2, b2) != (a, b):
-                conds.append(_cond(f"the region bounds {mx.text}, {my.text}", hx is not None and hy is not None))
+                conds.append(decided(f"the region bounds {mx.text}, {my.text}", hx is not None and hy is not None))
                 if hx is None or hy is None:
                     return None, conds
                 k = k * hx ** (a - a2) * hy ** (b - b2)
@@ -250,7 +250,7 @@ _CUBIC = ((0, 3), (1, 2), (2, 1), (3, 0))
 def _register(ctx, prefix, kappas, expected, conds) -> bool:
     """Name the certified κ_ab ``prefix_ab`` (0 for an absent part); False if a part is not expected."""
     ok = set(kappas) <= set(expected)
-    conds.append(_cond(f"the parts are among {list(expected)}", ok, f"got {sorted(kappas)}"))
+    conds.append(decided(f"the parts are among {list(expected)}", ok, f"got {sorted(kappas)}"))
     for ab in expected:
         kappas.setdefault(ab, sympy.S.Zero)
         ctx.certified[f"{prefix}_{ab[0]}{ab[1]}"] = (kappas[ab], {"certified": float(kappas[ab])})
@@ -290,16 +290,16 @@ class WindowCubicNorm(Norm):
         weight, F, what, prefix = self.data
         parsed, why = _window_parts(vec)
         if parsed is None:
-            return None, [_cond("the vector is a window integral ∫g(ξ)F(x(ξ), y(ξ))dξ", False, why)]
+            return None, [decided("the vector is a window integral ∫g(ξ)F(x(ξ), y(ξ))dξ", False, why)]
         G, (_, lo, hi) = parsed
         g = sympy.expand(ctx.at(weight))
         Fx = sympy.Matrix(ctx.at(sympy.Matrix(F)))
-        conds = [_cond(f"the window is [t − τ, t]", ctx.zero(hi - t) and ctx.zero(lo - (t - ctx.at(tau)))),
-                 _cond(f"the integrand is g(ξ)·{what} with g = {g}", all(ctx.zero(a - g * b) for a, b in zip(G, Fx)),
+        conds = [decided("the window is [t − τ, t]", ctx.zero(hi - t) and ctx.zero(lo - (t - ctx.at(tau)))),
+                 decided(f"the integrand is g(ξ)·{what} with g = {g}", all(ctx.zero(a - g * b) for a, b in zip(G, Fx)),
                        "it is not")]
         ends = [sympy.simplify(g.subs(xi, lo)), sympy.simplify(g.subs(xi, hi))]
         affine = sympy.Poly(g, xi).degree() <= 1
-        conds.append(_cond(f"g is affine in ξ and ≥ 0 at the ends {ends}", affine and all(_sign(v) == 1 for v in ends)
+        conds.append(decided(f"g is affine in ξ and ≥ 0 at the ends {ends}", affine and all(sign_of(v) == 1 for v in ends)
                            or None, "not shown"))
         if not all(c.status.is_proof for c in conds):
             return None, conds
@@ -312,7 +312,7 @@ class WindowCubicNorm(Norm):
         if not _register(ctx, prefix, kappas, _CUBIC, conds):
             return None, conds
         hx, hy = _window_sup(ctx, _xs), _window_sup(ctx, _ys)
-        conds.append(_cond("the region bounds ‖x(ξ)‖, ‖y(ξ)‖ on the window [t − τ, t]", hx is not None and hy is not None))
+        conds.append(decided("the region bounds ‖x(ξ)‖, ‖y(ξ)‖ on the window [t − τ, t]", hx is not None and hy is not None))
         if not all(c.status.is_proof for c in conds):
             return None, conds
         k = kappas  # ‖x‖²‖y‖ ≤ δy‖x‖², ‖x‖³ ≤ δx‖x‖², ‖x‖‖y‖² ≤ (‖x‖² + ‖y‖⁴)/2

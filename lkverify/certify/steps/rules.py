@@ -66,7 +66,7 @@ def _explicit_time(e) -> bool:
 
 __all__ = ["Application", "CauchySchwarz", "Context", "Equal", "Nonpositive", "Norm", "Printed", "Rayleigh", "Rule",
            "Template", "WindowWeight", "Young", "Homogeneous", "crossed", "integral_of", "mapped", "measured", "nonnegative",
-           "scaled", "summed", "unit"]
+           "scaled", "summed", "unit", "decided", "sign_of"]
 
 
 #: how a Template rule certifies its supremum (as lkverify.certify.constants.ConstantsTuning's defaults)
@@ -221,12 +221,29 @@ class Application:
                 "constants": {name: value for name, value, _ in self.constants}}
 
 
-def _cond(text, ok, detail="", *, certified=False) -> Condition:
+def decided(text, ok, detail="", *, certified=False) -> Condition:
+    """The :class:`Condition` of a decision: ``ok`` True holds, False fails, None is undecided.
+
+    A holding condition is ``exact``, or ``certified`` when the decision went through interval
+    arithmetic (``certified=True``).
+
+    Examples
+    --------
+    >>> decided("q is rational", True).status.value, decided("κ certified", True, certified=True).status.value
+    ('exact', 'certified')
+    >>> c = decided("the region bounds ‖x‖", None); c.status.value, c.detail
+    ('undecided', 'not decided')
+    >>> decided("b ≥ 0", False).status.value
+    'failed'
+    """
     if ok is None:
         return Condition(text, Status.UNDECIDED, detail or "not decided")
     if ok:
         return Condition(text, Status.CERTIFIED if certified else Status.EXACT, detail)
     return Condition(text, Status.FAILED, detail or "does not hold")
+
+
+_cond = decided
 
 
 def _fails(rule: str, text: str, detail: str, bound=None) -> Application:
@@ -309,14 +326,25 @@ def _abs_factor(c, measure_symbols):
     return None
 
 
-def _sign(expr) -> int | None:
-    """+1 (≥ 0), −1 (≤ 0) or None, for a constant expression (parameters with assumptions allowed)."""
+def sign_of(expr) -> int | None:
+    """+1 (≥ 0), −1 (≤ 0) or None, for a constant expression (parameters with assumptions allowed).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> a = sympy.Symbol("a", positive=True)
+    >>> sign_of(a ** 2 + 1), sign_of(-3 * a), sign_of(a - 1)
+    (1, -1, None)
+    """
     e = sympy.sympify(expr)
     if e.is_nonnegative or nonnegative(e):
         return 1
     if e.is_nonpositive or nonnegative(-e):
         return -1
     return None
+
+
+_sign = sign_of
 
 
 # -- norm trees -------------------------------------------------------------------------------
