@@ -9,7 +9,7 @@ e0 = (2, 2, 1)/3 (:mod:`.kinematics`: σ0 = e0 tan(Φ0/4), |σ0| = 0.767 ≤ 1),
   (11), not (10);
 * ``(10) without saturation``: the loop (3), (10) from the same state — σ̈ = v, so ‖V(t)‖e^{αt}
   stays constant (V̇ = AV of :mod:`.comparison`: checked along the run); it asks for up to 2.8 a_m;
-* ``inside the certified region``: σ0 = 0.05e0 (Φ0 ≈ 11.4°), ω0 = 0, a_m = 1/100 — inside the
+* ``inside the region``: σ0 = 0.05e0 (Φ0 ≈ 11.4°), ω0 = 0, a_m = 1/100 — inside the
   region of :mod:`.region`; ‖V‖ must not increase and SC must stay inactive.
 
 Every run must converge (the limits (5)).  ``lkverify simulate somov.example --plot f.png``
@@ -122,7 +122,7 @@ class LinearDecay(RunClaim):
                          f"‖V(0)‖ = {Vn[0]:.4g}; largest relative rise between samples {rise:.2g}")
 
 
-SAT, LIN, INSIDE = "(11): saturating", "(10): without saturation", "(11): inside the certified region"
+SAT, LIN, INSIDE = "(11): saturating", "(10): without saturation", "(11): inside the region"
 example = Example(
     "example",
     title="Paper 003: MRP feedback linearisation (10) with the saturation SC of (11)",

@@ -1,4 +1,4 @@
-"""The region of attraction of paper 003's closed loop (3), (11): certified, and against a simulated grid.
+"""The region of attraction of paper 003's closed loop (3), (11) from the comparison system, and against a simulated grid.
 
 From the comparison system of :mod:`.comparison`, D⁺‖V‖ ≤ φ(‖V‖) with φ(r) = −αr + (3/β)max(0, g(r)),
 g(r) = k0r + 2k0r² + 6k0r³ − a_m/4:
@@ -15,9 +15,9 @@ g(r) = k0r + 2k0r² + 6k0r³ − a_m/4:
   Q₁₁s² + 2|Q₁₂|s·y + Q₂₂y² < ρ*², s = |σ(t0)|, y = ¼(1 + s²)‖ω(t0)‖, is attracted.
 
 ``lkverify constants somov.region`` simulates the closed loop (3), (11) on a grid of (|σ0|, ‖ω0‖)
-(four direction pairs each, :mod:`.grid`) and compares: the certified set must lie inside the
+(four direction pairs each, :mod:`.grid`) and compares: the region's set must lie inside the
 converged one (status ``simulated``), and the ratio of their areas in the (|σ0|, ‖ω0‖) rectangle is
-reported (``estimated``).  At the catalogued instance the certified set is |σ0| < 0.078 (Φ0 < 18°)
+reported (``estimated``).  At the catalogued instance the region is |σ0| < 0.078 (Φ0 < 18°)
 at ω0 = 0 — the majorant is crude — while every sampled state with |σ0| ≤ 1 and ‖ω0‖ ≤ 0.25 rad/s
 converges (area ratio ≈ 0.006); faster initial spins carry the body through Φ = 2π, where the MRP of
 this law (no switching to the shadow set) runs off to infinity.
@@ -122,20 +122,24 @@ def _region_rows(v) -> list:
     ok = reg.r0 is not None and reg.rho is not None
     rows = [Result("constant", "r0 (saturation inactive)", Status.EXACT, {"value": float(reg.r0), "exact": str(reg.r0)},
                    f"g(r) = {sympy.sstr(g)} has the single positive root r0 = {float(reg.r0):.6g}: on ‖V‖ ≤ r0 the "
-                   f"bound on ‖p‖ is 0, i.e. ‖D(v − a)‖₂ ≤ a_m and SC is inactive (exact root)"),
+                   f"bound on ‖p‖ is 0, i.e. ‖D(v − a)‖₂ ≤ a_m and SC is inactive (the root exact; the bound on ‖p‖ "
+                   f"is the hand-applied norm step of somov.comparison)"),
             Result("region", "rho* (comparison system)", Status.EXACT if ok else Status.FAILED,
                    {"value": float(reg.rho) if reg.rho is not None else None, "exact": str(reg.rho)},
                    f"ψ(r) = −αr + (3/β)g(r) = {sympy.sstr(sympy.expand(psi))}: ψ(r0) = −αr0 < 0 and its first root "
                    f"above r0 is ρ* = {float(reg.rho):.6g} (ψ(r0) = −αr0 since g(r0) = 0; every real root of ψ isolated exactly): "
-                   f"φ < 0 on (0, ρ*), so ‖V(t0)‖ < ρ* ⇒ ‖V(t)‖ ↓ 0 and (5)")]
+                   f"φ < 0 on (0, ρ*) (exact); that ‖V(t0)‖ < ρ* then gives ‖V(t)‖ ↓ 0 and (5) rests on the comparison "
+                   f"system (estimated, see somov.comparison)")]
     smax, wmax = reg.s_max, reg.w_max
-    rows.append(Result("region", "certified initial data", Status.EXACT,
+    rows.append(Result("region", "initial data in the region", Status.ESTIMATED,
                        {"s_max": float(smax), "Phi_max_deg": float(4 * sympy.atan(smax) * 180 / sympy.pi),
                         "w_max": float(wmax), "Q": [str(x) for x in reg.Q]},
                        f"attracted if Q₁₁s² + 2|Q₁₂|s·y + Q₂₂y² < ρ*², s = |σ(t0)|, y = ¼(1+s²)‖ω(t0)‖, "
                        f"(Q₁₁, |Q₁₂|, Q₂₂) = ({', '.join(sympy.sstr(x) for x in reg.Q)}): at ω0 = 0 |σ0| < "
                        f"{float(smax):.4g} (Φ0 < {float(4 * sympy.atan(smax) * 180 / sympy.pi):.3g}°), at σ0 = 0 "
-                       f"‖ω0‖ < {float(wmax):.4g} rad/s (a_m = {v['a_m']})"))
+                       f"‖ω0‖ < {float(wmax):.4g} rad/s (a_m = {v['a_m']}); exact given the comparison system "
+                       f"D⁺‖V‖ ≤ φ(‖V‖), whose norm steps are applied by hand and sampled (somov.comparison): the "
+                       f"region is as sure as that step, so estimated"))
     return rows
 
 
@@ -146,7 +150,7 @@ N_BOUNDARY = 16
 
 
 class RegionConstants:
-    """``lkverify constants somov.region``: the certified region against a simulated grid (goals, run, plot)."""
+    """``lkverify constants somov.region``: the region against a simulated grid (goals, run, plot)."""
 
     goals = ["default"]
 
@@ -165,9 +169,9 @@ class RegionConstants:
         sb = np.linspace(0.0, 0.999 * float(reg.s_max), self.n_boundary)
         wb = 0.999 * reg.w_boundary(sb)
         ok = run_points(values, sb, wb, t_end=self.t_end, dt=self.dt)
-        rows.append(Result("simulation", "certified boundary converges", Status.SIMULATED if ok.all() else Status.FAILED,
+        rows.append(Result("simulation", "region boundary converges", Status.SIMULATED if ok.all() else Status.FAILED,
                            {"points": self.n_boundary, "not_converged": int((~ok).sum())},
-                           f"{int(ok.sum())} of {self.n_boundary} initial data just inside the certified boundary "
+                           f"{int(ok.sum())} of {self.n_boundary} initial data just inside the region's boundary "
                            f"(|σ0| from 0 to {0.999 * float(reg.s_max):.3g}, 4 direction pairs each) converge"))
         bad = [r.name for r in rows if not r.status.holds]
         verdict = "every check holds" if not bad else f"failed: {', '.join(bad)}"
@@ -184,7 +188,7 @@ class RegionConstants:
         ax.scatter(S[grid.converged], Wg[grid.converged], s=14, c="tab:green", label="converged (all 4 directions)")
         ax.scatter(S[~grid.converged], Wg[~grid.converged], s=18, marker="x", c="tab:red", label="not converged")
         ss = np.linspace(0, float(reg.s_max), 400)
-        ax.fill_between(ss, 0, reg.w_boundary(ss), color="tab:blue", alpha=0.35, label="certified (comparison system)")
+        ax.fill_between(ss, 0, reg.w_boundary(ss), color="tab:blue", alpha=0.35, label="region (comparison system; its norm steps by hand)")
         ax.set_xlabel(r"$|\sigma(t_0)|$")
         ax.set_ylabel(r"$\|\omega(t_0)\|$ (rad/s)")
         v = extra["values"]
@@ -192,7 +196,7 @@ class RegionConstants:
                      f"a_m = {v['a_m']}; runs to t = {grid.t_end:g}", fontsize=9)
         b = extra.get("boundary")
         if b is not None:
-            ax.plot(b[0], b[1], ".", ms=4, c="navy", label="simulated on the certified boundary")
+            ax.plot(b[0], b[1], ".", ms=4, c="navy", label="simulated on the region's boundary")
         ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2)
         ax.grid(alpha=0.3)
         fig.savefig(path, dpi=120)
@@ -215,15 +219,15 @@ def grid_rows(reg, grid) -> list:
     sim_area = float(np.sum(grid.converged * np.outer(ws, ww)))
     total = float(grid.s[-1] * grid.w[-1])
     ratio = cert_area / sim_area if sim_area else float("nan")
-    rows = [Result("simulation", "certified set inside the converged grid", Status.FAILED if missed.any() else
+    rows = [Result("simulation", "region inside the converged grid", Status.FAILED if missed.any() else
                    Status.SIMULATED, {"grid_points_certified": int(inside.sum()), "missed": int(missed.sum())},
-                   f"{int(inside.sum())} of the {inside.size} grid points lie in the certified set and every one of "
+                   f"{int(inside.sum())} of the {inside.size} grid points lie in the region and every one of "
                    f"them converged (4 direction pairs each, RK4 dt = {grid.dt:g} to t = {grid.t_end:g})"
-                   if not missed.any() else f"{int(missed.sum())} certified grid points did NOT converge"),
-            Result("simulation", "area ratio certified/converged", Status.ESTIMATED,
+                   if not missed.any() else f"{int(missed.sum())} grid points in the region did NOT converge"),
+            Result("simulation", "area ratio region/converged", Status.ESTIMATED,
                    {"ratio": ratio, "certified_area": cert_area, "converged_area": sim_area, "rectangle": total,
                     "converged_fraction": float(grid.converged.mean())},
-                   f"in |σ0| ∈ [0, 1], ‖ω0‖ ∈ [0, {grid.w[-1]:.3g}]: certified area {cert_area:.3g}, converged "
+                   f"in |σ0| ∈ [0, 1], ‖ω0‖ ∈ [0, {grid.w[-1]:.3g}]: region area {cert_area:.3g}, converged "
                    f"{sim_area:.3g} ({100 * grid.converged.mean():.0f} % of the grid points): ratio {ratio:.3g}")]
     return rows
 
