@@ -37,7 +37,7 @@ import sympy
 
 from lkverify import Budget, IdentityClaim, Status, Term, dot, quad, t
 from lkverify.certify.bounds import certify_positive
-from lkverify.certify.steps.chain import TermBound, TermwiseBound, collect_monomials
+from lkverify.certify.steps.chain import TermBound, collect_monomials, lyapunov_steps
 from lkverify.certify.steps.measures import Region, norm_measure
 from lkverify.certify.steps.rewrites import LowerBound, OnRegion, YoungEach
 from lkverify.certify.steps.rules import (CauchySchwarz, Condition, Equal, Rayleigh, crossed, mapped, measured,
@@ -236,20 +236,11 @@ def _vdot_bounds():
     ]
 
 
-def _sum(bounds):
-    return sum((tb.bound for tb in bounds), sympy.S.Zero)
-
-
 def chain_steps():
     """(V ≥ L, V ≤ U, V̇ ≤ W) of the proof of Theorem 1 on :data:`REGION`."""
     lower, upper, vdot = _lower_bounds(), _upper_bounds(), _vdot_bounds()
-    common = dict(region=REGION, definitions=DEFINITIONS, witness_time=1)
-    return (TermwiseBound("V ≥ L", functional, system, "V", lower, _sum(lower), MEASURES, relation=">=",
-                          role="lower", **common),
-            TermwiseBound("V ≤ U", functional, system, "V", upper, _sum(upper), MEASURES, relation="<=",
-                          role="upper", **common),
-            TermwiseBound("V̇ ≤ W", functional, system, "terms", vdot, _sum(vdot), MEASURES, relation="<=",
-                          terms=VDOT_TERMS, role="vdot", **common))
+    return lyapunov_steps(functional, system, lower, upper, vdot, MEASURES,
+                          region=REGION, definitions=DEFINITIONS, witness_time=1, vdot_terms=VDOT_TERMS)
 
 
 steps = chain_steps()

@@ -33,14 +33,14 @@ import numpy as np
 import sympy
 
 from lkverify import t, xi
-from lkverify.certify.steps.chain import Krasovskii, TermBound, TermwiseBound
+from lkverify.certify.steps.chain import Krasovskii, TermBound, lyapunov_steps
 from lkverify.certify.steps.measures import Region, norm_measure, sup_norm, window_norm
 from lkverify.certify.steps.rewrites import OnRegion, YoungEach
 from lkverify.certify.steps.rules import (CauchySchwarz, Equal, Nonpositive, Rayleigh, Template, WindowWeight,
                                           measured)
 
-from .system3 import (A, B, X, Pi, Pi_t, alpha, beta, delta_q, delta_v, eta, eta_K, eta_j, eta_w, grad, kappa_t, lam,
-                      mu, p0, phi, q, sigma, system3, tau, v)
+from .system3 import (A, B, X, Pi, Pi_t, alpha, beta, delta_q, delta_v, eta, eta_K, eta_j, eta_w, grad, lam, mu, p0, q,
+                      sigma, system3, tau, v)
 from .theorem1_bound import DEFINITIONS, _ctx_eig, c1, c2, c3, c4, c5, c6, c7, c8, c10, c12, extreme_eigenvalue, \
     gradient_tree
 from .theorem1_functional import J_int, K_int, derivation, functional
@@ -134,20 +134,11 @@ def _vdot():
     ]
 
 
-def _sum(bounds):
-    return sum((tb.bound for tb in bounds), sympy.S.Zero)
-
-
 def chain_steps():
     """(V ≥ L, V ≤ U, V̇ ≤ W) of the proof of Theorem 1 on :data:`REGION`."""
     lower, upper, vdot = _lower(), _upper(), _vdot()
-    common = dict(region=REGION, definitions=DEFINITIONS)
-    return (TermwiseBound("V ≥ L", functional, system3, "V", lower, _sum(lower), MEASURES, relation=">=",
-                          role="lower", **common),
-            TermwiseBound("V ≤ U", functional, system3, "V", upper, _sum(upper), MEASURES, relation="<=",
-                          role="upper", **common),
-            TermwiseBound("V̇ ≤ W", functional, system3, "Vdot", vdot, _sum(vdot), MEASURES, relation="<=",
-                          derivation=derivation, role="vdot", **common))
+    return lyapunov_steps(functional, system3, lower, upper, vdot, MEASURES,
+                          region=REGION, definitions=DEFINITIONS, derivation=derivation)
 
 
 steps = chain_steps()

@@ -42,7 +42,7 @@ import numpy as np
 import sympy
 
 from lkverify import t, xi
-from lkverify.certify.steps.chain import Krasovskii, TermBound, TermwiseBound
+from lkverify.certify.steps.chain import Krasovskii, TermBound, lyapunov_steps
 from lkverify.certify.steps.measures import Region, norm_measure, sup_norm, window_integral_measure
 from lkverify.certify.steps.rewrites import OnRegion, WindowHolder, YoungEach
 from lkverify.certify.steps.rules import (Application, CauchySchwarz, Equal, Nonpositive, Norm, Rayleigh,
@@ -487,20 +487,11 @@ def _vdot():
     ]
 
 
-def _sum(bounds):
-    return sum((tb.bound for tb in bounds), sympy.S.Zero)
-
-
 def chain_steps():
     """(V ≥ L, V ≤ U, V̇ ≤ W) of the proof of Theorem 2 on :data:`REGION`."""
     lower, upper, vdot = _lower(), _upper(), _vdot()
-    common = dict(region=REGION, definitions=DEFINITIONS)
-    return (TermwiseBound("V ≥ L", functional, system_P4, "V", lower, _sum(lower), MEASURES, relation=">=",
-                          role="lower", **common),
-            TermwiseBound("V ≤ U", functional, system_P4, "V", upper, _sum(upper), MEASURES, relation="<=",
-                          role="upper", **common),
-            TermwiseBound("V̇ ≤ W", functional, system_P4, "Vdot", vdot, _sum(vdot), MEASURES, relation="<=",
-                          derivation=derivation, role="vdot", **common))
+    return lyapunov_steps(functional, system_P4, lower, upper, vdot, MEASURES,
+                          region=REGION, definitions=DEFINITIONS, derivation=derivation)
 
 
 steps = chain_steps()

@@ -37,7 +37,7 @@ import sympy
 
 from lkverify import Budget, Status, t, xi
 from lkverify.certify.bounds import certify_positive
-from lkverify.certify.steps.chain import Krasovskii, TermBound, TermwiseBound, collect_monomials
+from lkverify.certify.steps.chain import Krasovskii, TermBound, collect_monomials, lyapunov_steps
 from lkverify.certify.steps.measures import Region, sup_norm
 from lkverify.certify.steps.rewrites import LowerBound, OnRegion, PowerSplit, WindowHolder, YoungEach
 from lkverify.certify.steps.rules import (CauchySchwarz, Condition, Equal, Homogeneous, Rayleigh, WindowWeight,
@@ -192,21 +192,12 @@ def _vdot_bounds():
     ]
 
 
-def _sum(bounds):
-    return sum((tb.bound for tb in bounds), sympy.S.Zero)
-
-
 def chain_steps():
     """(V ≥ L, V ≤ U, V̇ ≤ W) of the proof of Theorem 1 on :data:`REGION`."""
     lower, _ = _lower_bounds()
     upper, vdot = _upper_bounds(), _vdot_bounds()
-    common = dict(region=REGION, definitions=DEFINITIONS)
-    return (TermwiseBound("V ≥ L", functional, system, "V", lower, _sum(lower), MEASURES, relation=">=",
-                          role="lower", **common),
-            TermwiseBound("V ≤ U", functional, system, "V", upper, _sum(upper), MEASURES, relation="<=",
-                          role="upper", **common),
-            TermwiseBound("V̇ ≤ W", functional, system, "Vdot", vdot, _sum(vdot), MEASURES, relation="<=",
-                          derivation=derivation, role="vdot", **common))
+    return lyapunov_steps(functional, system, lower, upper, vdot, MEASURES,
+                          region=REGION, definitions=DEFINITIONS, derivation=derivation)
 
 
 steps = chain_steps()

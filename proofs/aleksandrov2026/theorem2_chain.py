@@ -46,7 +46,7 @@ import math
 import sympy
 
 from lkverify import Status, t, xi, zeta
-from lkverify.certify.steps.chain import TermBound, TermwiseBound, collect_monomials
+from lkverify.certify.steps.chain import TermBound, TermwiseBound, collect_monomials, lyapunov_steps
 from lkverify.certify.steps.measures import Region, sup_norm
 from lkverify.certify.steps.memory import (U, Evaluated, KernelBound, MemoryHolder, MemoryKrasovskii, MemoryWeight,
                                            evaluate_constant_integrals, kernel_integral, memory_integral_of,
@@ -270,13 +270,8 @@ def _sum(bounds):
 def chain_steps():
     """(V ≥ L, V ≤ U, V̇ ≤ W) of the proof of Theorem 2 on :data:`REGION`."""
     lower, upper, vdot = _lower_bounds(), _upper_bounds(), _vdot_bounds()
-    common = dict(region=REGION, definitions=DEFINITIONS)
-    return (TermwiseBound("V ≥ L", functional, system_pid, "V", lower, _sum(lower), MEASURES, relation=">=",
-                          role="lower", **common),
-            TermwiseBound("V ≤ U", functional, system_pid, "V", upper, _sum(upper), MEASURES, relation="<=",
-                          role="upper", **common),
-            TermwiseBound("V̇ ≤ W", functional, system_pid, "Vdot", vdot, _sum(vdot), MEASURES, relation="<=",
-                          derivation=derivation, role="vdot", **common))
+    return lyapunov_steps(functional, system_pid, lower, upper, vdot, MEASURES,
+                          region=REGION, definitions=DEFINITIONS, derivation=derivation)
 
 
 steps = chain_steps()

@@ -21,7 +21,7 @@
   with rhs on the region.
 """
 
-from .chain import ChainResult, Decay, TermBound, TermResult, TermwiseBound
+from .chain import ChainResult, Decay, TermBound, TermResult, TermwiseBound, lyapunov_steps
 from .measures import Measure, Region, norm_measure, sup_norm, window_integral_measure, window_norm
 from .memory import (Evaluated, KernelBound, MemoryHolder, MemoryKrasovskii, MemoryMeasure, MemoryWeight,
                      memory_integral_of, memory_measure)
@@ -38,4 +38,4 @@ __all__ = ["BoundClaim", "CauchySchwarz", "ChainResult", "Context", "Decay", "Eq
            "window_integral_measure", "window_norm",
            "Evaluated", "KernelBound", "MemoryHolder", "MemoryKrasovskii", "MemoryMeasure", "MemoryWeight",
            "memory_integral_of", "memory_measure"]
-__all__ += ["TimeVaryingRate", "UpperBound", "sup_in_t", "sup_on"]
+__all__ += ["TimeVaryingRate", "UpperBound", "sup_in_t", "sup_on", "lyapunov_steps"]

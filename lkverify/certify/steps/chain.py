@@ -38,7 +38,7 @@ from ...status import Status
 from .measures import Measure, Region
 from .rules import Application, Context, Rule, Young, nonnegative
 
-__all__ = ["ChainResult", "Decay", "TermBound", "TermResult", "TermwiseBound"]
+__all__ = ["ChainResult", "Decay", "TermBound", "TermResult", "TermwiseBound", "lyapunov_steps"]
 
 _WEAKEST = (Status.FAILED, Status.UNDECIDED, Status.SIMULATED, Status.ESTIMATED, Status.CERTIFIED)
 
@@ -483,6 +483,64 @@ class TermwiseBound:
                                   **({} if self.witness_time is None else {"time": self.witness_time}))
         except InputError:
             return None
+
+
+def lyapunov_steps(functional, system, lower, upper, vdot, measures, *, region=None, definitions=None,
+                   derivation=None, vdot_terms=(), **options) -> tuple:
+    """The three bound steps of an LK proof, V ≥ L, V ≤ U and V̇ ≤ W, each rhs the sum of its term bounds.
+
+    Parameters
+    ----------
+    functional, system
+        The theorem's functional and system.
+    lower, upper, vdot : sequence of TermBound
+        The term bounds of V ≥ L, V ≤ U and V̇ ≤ W; L, U, W are their sums.
+    measures : sequence of Measure
+    region : Region, optional
+    definitions : mapping, optional
+        Named constants of the bounds (see :class:`TermwiseBound`).
+    derivation : DerivativeClaim, optional
+        V̇ ≤ W bounds the structured terms of this claim (``lhs="Vdot"``) …
+    vdot_terms : tuple of Term, optional
+        … or these terms computed from the model (``lhs="terms"``).
+    **options
+        Passed to each :class:`TermwiseBound` (``witness_time``, ``witness_seconds``).
+
+    Returns
+    -------
+    (TermwiseBound, TermwiseBound, TermwiseBound)
+        Roles ``lower``, ``upper``, ``vdot``: a Theorem's ``steps``.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import DerivativeClaim, Equation, Functional, Parameters, System, Term, Vector, t
+    >>> from lkverify.certify.steps import Rayleigh, TermBound, lyapunov_steps, norm_measure
+    >>> P = Parameters(); x = Vector("x", 2); n = norm_measure("n", x(t)); N = n.symbol
+    >>> V = Functional([Term((x(t).T * x(t))[0] / 2, text="½‖x‖²")])
+    >>> sys_ = System([Equation(x, [Term(-x(t))])], parameters=P)
+    >>> vdot = DerivativeClaim("Vdot", V, sys_, [Term(-(x(t).T * x(t))[0], text="−‖x‖²")])
+    >>> half = lambda c: [TermBound("½‖x‖²", c * N**2, Rayleigh(x(t), sympy.eye(2) / 2, eigenvalue=c,
+    ...                                                             norm_squared=N**2))]
+    >>> steps = lyapunov_steps(V, sys_, half(sympy.Rational(1, 2)), half(sympy.Rational(1, 2)),
+    ...                        [TermBound("−‖x‖²", -N**2, Rayleigh(x(t), -sympy.eye(2), eigenvalue=-1,
+    ...                                                           norm_squared=N**2))], [n], derivation=vdot)
+    >>> [(s.name, s.role, s.rhs) for s in steps]
+    [('V ≥ L', 'lower', n**2/2), ('V ≤ U', 'upper', n**2/2), ('V̇ ≤ W', 'vdot', -n**2)]
+    >>> [s.check(P.resolve({})).status.value for s in steps]
+    ['exact', 'exact', 'exact']
+    """
+    def total(bounds):
+        return sum((tb.bound for tb in bounds), sympy.S.Zero)
+
+    common = dict(region=region, definitions=dict(definitions or {}), **options)
+    vdot_lhs = dict(terms=tuple(vdot_terms)) if vdot_terms else dict(derivation=derivation)
+    return (TermwiseBound("V ≥ L", functional, system, "V", tuple(lower), total(lower), tuple(measures),
+                          relation=">=", role="lower", **common),
+            TermwiseBound("V ≤ U", functional, system, "V", tuple(upper), total(upper), tuple(measures),
+                          relation="<=", role="upper", **common),
+            TermwiseBound("V̇ ≤ W", functional, system, "terms" if vdot_terms else "Vdot", tuple(vdot), total(vdot),
+                          tuple(measures), relation="<=", role="vdot", **vdot_lhs, **common))
 
 
 @dataclasses.dataclass(frozen=True)

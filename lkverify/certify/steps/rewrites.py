@@ -346,15 +346,17 @@ class LowerBound(Rule):
     text: str = "a lemma"
     name = "a lower bound from a certified lemma"
     directional = True
+    side = "lower"  # the bound replaces m from below (LowerBound) or from above (UpperBound)
 
     def rewrite(self, previous, ctx, direction: str = "upper") -> Application:
         m = ctx.measure(self.measure)
-        lemma = self.certify(ctx)
-        if not isinstance(lemma, Condition):
-            lemma = Condition(self.text, Status.UNDECIDED, f"the lemma's check returned {type(lemma).__name__}")
-        bound, more = _substitute(ctx.at(previous), m.symbol, ctx.at(self.bound), "lower", direction,
-                                  f"{self.text} (a lower bound)")
-        return Application(self.name, bound, (lemma, *more))
+        decided = self.certify(ctx)
+        if not isinstance(decided, Condition):
+            decided = Condition(self.text, Status.UNDECIDED, f"the check returned {type(decided).__name__}")
+        bound, more = _substitute(ctx.at(previous), m.symbol, ctx.at(self.bound), self.side, direction,
+                                  f"{self.text} (an {self.side} bound)" if self.side == "upper"
+                                  else f"{self.text} (a {self.side} bound)")
+        return Application(self.name, bound, (decided, *more))
 
     def apply(self, term, direction, ctx):
         return self.rewrite(ctx.at(term), ctx, direction)

@@ -42,14 +42,13 @@ from ...declare.symbols import t as _t
 from ...report.results import Result
 from ...status import Status
 from .chain import _coefficient_sign, collect_monomials
-from .rewrites import _substitute
-from .rules import Application, Condition, Rule
+from .rewrites import LowerBound
 
 __all__ = ["TimeVaryingRate", "UpperBound", "sup_in_t", "sup_on"]
 
 
 @dataclasses.dataclass(frozen=True)
-class UpperBound(Rule):
+class UpperBound(LowerBound):
     """A measure m replaced by an upper bound u ≥ m that a decided condition gives.
 
     ``certify(ctx)`` decides the condition at the checked values (a
@@ -73,24 +72,9 @@ class UpperBound(Rule):
     'undecided'
     """
 
-    measure: str
-    bound: object
-    certify: Callable
     text: str = "a condition"
     name = "an upper bound from a decided condition"
-    directional = True
-
-    def rewrite(self, previous, ctx, direction: str = "upper") -> Application:
-        m = ctx.measure(self.measure)
-        cond = self.certify(ctx)
-        if not isinstance(cond, Condition):
-            cond = Condition(self.text, Status.UNDECIDED, f"the condition's check returned {type(cond).__name__}")
-        bound, more = _substitute(ctx.at(previous), m.symbol, ctx.at(self.bound), "upper", direction,
-                                  f"{self.text} (an upper bound)")
-        return Application(self.name, bound, (cond, *more))
-
-    def apply(self, term, direction, ctx):
-        return self.rewrite(ctx.at(term), ctx, direction)
+    side = "upper"
 
 
 # ---- bounds over 0 < x ≤ H, term by term -----------------------------------------------------------
