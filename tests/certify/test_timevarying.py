@@ -186,3 +186,81 @@ def test_a_floating_point_exponent_is_never_rounded_to_a_rational():
     bound, why = _sup_on(x ** _sp.Float(0.5) - 1, x, 1)
     assert bound is None and "not a sum" in why
     assert _sup_on(x ** _sp.Rational(1, 2) - 1, x, 1) == (0, None)
+
+
+# -- the power rate V̇ ≤ −α h^ν V^λ (lam=): x' = −h‖x‖²x, y' = −h‖y‖²y, V = ‖x‖² (+ ‖y‖²), V̇ = −2h‖x‖⁴ (− 2h‖y‖⁴) ----
+Y = Vector("y", 2)
+NY = norm_measure("ny", Y(t))
+ny = NY.symbol
+SYS4 = System([Equation(x, [Term(-HT * x(t).dot(x(t)) * x(t))]), Equation(Y, [Term(-HT * Y(t).dot(Y(t)) * Y(t))])],
+              parameters=P)
+
+
+def _quartic_steps(upper=1, vdot=-2, both=False):
+    """V ≥ L, V ≤ U, V̇ ≤ W on SYS4, term by term (Rayleigh with a factor in the measures), all exact."""
+    vecs = ((x, N, n), (Y, NY, ny)) if both else ((x, N, n),)
+
+    def step(role, rel, c, extra):
+        bounds, terms = [], []
+        for vec, _, m in vecs:
+            f = sympy.sympify(c) * (hh * m**2 if extra else 1)
+            bounds.append(TermBound(f"T{m}", f * m**2, Rayleigh(vec(t), sympy.eye(2), factor=f, eigenvalue=1,
+                                                                   norm_squared=m**2)))
+            terms.append(Term(f.subs({hh: HT, m: sympy.sqrt(vec(t).dot(vec(t)))}) * vec(t).dot(vec(t)), text=f"T{m}"))
+        rhs = sum((b.bound for b in bounds), sympy.S.Zero)
+        return TermwiseBound(role, None, SYS4, "terms", bounds, rhs, [N, NY, HM], relation=rel,
+                             region=Region({N: 1, NY: 1}), role=role, witness_time=1, terms=tuple(terms))
+
+    out = {}
+    for role, rel, c, extra in (("lower", ">=", 1, False), ("upper", "<=", upper, False), ("vdot", "<=", vdot, True)):
+        s = step(role, rel, c, extra)
+        out[role] = (s, s.check(P.resolve({})))
+        assert out[role][1].status.is_proof, out[role][1].detail
+    return out
+
+
+@pytest.fixture(scope="module")
+def quartic():
+    return _quartic_steps()
+
+
+def test_power_rate_exact_with_the_algebraic_envelope(quartic):
+    rate = TimeVaryingRate(("n",), "hh", 1, 2, lam=2)
+    rows, status, detail = rate.certify(quartic, P.resolve({}))
+    assert status is Status.EXACT and rows[0].name == "V̇ ≤ −α8 h^ν V^λ" and "V^λ" in rate.link
+    assert rows[0].value["alpha_largest"] == 2 and rows[0].value["lam"] == "2"
+    assert "(1 + 2·(2−1)V(t0)^(2−1)∫h^1)^(−1/(2−1))" in detail and "exp" not in rows[1].detail
+    assert TimeVaryingRate(("n",), "hh", 1, 2).link.startswith("(12)")  # λ = 1 keeps its name
+
+
+def test_power_rate_written_differently_passes(quartic):
+    for alpha, lam in ((1, R(4, 2)), (sympy.sqrt(3), 2), (R(1, 2), sympy.Integer(2))):
+        assert TimeVaryingRate(("n",), "hh", 1, alpha, lam=lam).certify(quartic, P.resolve({}))[1].is_proof
+
+
+def test_power_rate_too_large_or_wrong_power_fails(quartic):
+    status, detail = TimeVaryingRate(("n",), "hh", 1, R(201, 100), lam=2).certify(quartic, P.resolve({}))[1:]
+    assert status is Status.FAILED and detail.startswith("fails at the monomial n**4")
+    # a quartic W gives no V̇ ≤ −α h V (λ = 1): the n² monomial is not dominated
+    status, detail = TimeVaryingRate(("n",), "hh", 1, R(1, 100)).certify(quartic, P.resolve({}))[1:]
+    assert status is Status.FAILED and "n**2" in detail
+    # nor λ = 3/2 (V^{3/2} ~ n³ is not dominated by n⁴ near 0)
+    assert TimeVaryingRate(("n",), "hh", 1, R(1, 100), lam=R(3, 2)).certify(quartic, P.resolve({}))[1] is Status.FAILED
+
+
+def test_power_rate_flipped_sign_and_lambda_below_one():
+    status = TimeVaryingRate(("n",), "hh", 1, R(1, 100), lam=2).certify(_quartic_steps(vdot=2), P.resolve({}))[1]
+    assert status is Status.FAILED
+    status, detail = TimeVaryingRate(("n",), "hh", 1, 1, lam=R(1, 2)).certify(_quartic_steps(), P.resolve({}))[1:]
+    assert status is Status.UNDECIDED and "≥ 1" in detail
+
+
+def test_power_rate_uses_sup_u_to_the_power_and_the_number_of_squares():
+    # U = 2n²: U² = 4n⁴, so α ≤ 2/4
+    steps = _quartic_steps(upper=2)
+    assert TimeVaryingRate(("n",), "hh", 1, R(1, 2), lam=2).certify(steps, P.resolve({}))[1] is Status.EXACT
+    assert TimeVaryingRate(("n",), "hh", 1, R(51, 100), lam=2).certify(steps, P.resolve({}))[1] is Status.FAILED
+    # two squares: (n² + ny²)² ≤ 2(n⁴ + ny⁴), so α ≤ 2/2
+    steps = _quartic_steps(both=True)
+    assert TimeVaryingRate(("n", "ny"), "hh", 1, 1, lam=2).certify(steps, P.resolve({}))[1] is Status.EXACT
+    assert TimeVaryingRate(("n", "ny"), "hh", 1, R(101, 100), lam=2).certify(steps, P.resolve({}))[1] is Status.FAILED

@@ -198,6 +198,12 @@ class TimeVaryingRate:
         (e.g. ∫h^ν = ∞, which makes the envelope tend to 0): each must be exact or certified.
     t0 : number
         The initial time; H = sup_{t ≥ t0} h(t) is computed exactly (:func:`sup_in_t`).
+    lam : number, optional
+        λ ≥ 1 of the power rate V̇ ≤ −α h^ν V^λ (default 1, the rate above).  For λ ≠ 1, U must be
+        Σ_k u_k(h) x_k² (pure squares of the point measures) and U is replaced in the test by the bound
+        V^λ ≤ U^λ ≤ n^{λ−1} Σ_k ū_k^λ x_k^{2λ} (ū_k = sup_{0<h≤H} u_k, n squares; 0 ≤ V by V ≥ L;
+        convexity of y^λ): W_m + α h^ν n^{λ−1} ū_k^λ [m = x_k^{2λ}] ≤ 0 for every monomial m.  The
+        envelope is then algebraic, V(t) ≤ V(t0)(1 + α(λ−1)V(t0)^{λ−1}∫_{t0}^t h^ν)^{−1/(λ−1)}.
 
     The check, all exact or in arb: H exists; for every monomial m of the state measures,
     L_m(h) ≥ 0 and each pure square x_i² of a point measure has inf_{0<h≤H} L_m ≥ α1 > 0;
@@ -235,7 +241,20 @@ class TimeVaryingRate:
     rate: object
     conditions: Callable | None = None
     t0: object = 0
-    link = "(12) V̇ ≤ −α h^ν(t) V on the region and the envelope V(t) ≤ V(t0) exp(−α∫h^ν)"
+    lam: object = 1
+
+    @property
+    def link(self):
+        """The link's name: (12) for λ = 1, the power rate V̇ ≤ −α h^ν V^λ and its algebraic envelope otherwise."""
+        if sympy.sympify(self.lam) == 1:
+            return "(12) V̇ ≤ −α h^ν(t) V on the region and the envelope V(t) ≤ V(t0) exp(−α∫h^ν)"
+        return (f"V̇ ≤ −α h^ν(t) V^λ (λ = {self.lam}) on the region and the envelope "
+                f"V(t) ≤ V(t0)(1 + α(λ−1)V(t0)^(λ−1)∫h^ν)^(−1/(λ−1))")
+
+    @property
+    def row(self):
+        """The name of the rate's result row."""
+        return "(12) V̇ ≤ −α7 h^ν V" if sympy.sympify(self.lam) == 1 else "V̇ ≤ −α8 h^ν V^λ"
 
     def certify(self, steps, values, *, budget=None, progress=None, **_):
         """(results, status, detail): the rate inequality, the envelope's constants, the side conditions.
@@ -246,7 +265,7 @@ class TimeVaryingRate:
         conds = list(self.conditions(values)) if self.conditions is not None else []
         rows, status, detail = self._certify(steps, values)
         if not rows:
-            rows = [Result("region", "(12) V̇ ≤ −α7 h^ν V", status, None, detail)]
+            rows = [Result("region", self.row, status, None, detail)]
         rows += [Result("hypothesis", c.text, c.status, None, c.detail) for c in conds]
         bad = [c for c in conds if not c.status.is_proof]
         if bad:
@@ -290,7 +309,12 @@ class TimeVaryingRate:
             return [], Status.FAILED if "undecided" not in why else Status.UNDECIDED, why
         if U.get(sympy.S.One, 0) != 0:
             return [], Status.FAILED, f"U has the constant term {U[sympy.S.One]}, so U(0) ≠ 0"
-        best, why = self._rate(U, W, x, nu_, alpha, H, statuses)
+        lam = at(self.lam)
+        if lam != 1:
+            U_lam, why = self._power_of_u(U, point, x, H, lam, statuses)
+            if why:
+                return [], Status.FAILED if "not decided" not in why else Status.UNDECIDED, why
+        best, why = self._rate(U if lam == 1 else U_lam, W, x, nu_, alpha, H, statuses)
         if why:
             return [], Status.FAILED if "not decided" not in why else Status.UNDECIDED, why
         status = _weakest(statuses)
@@ -300,19 +324,50 @@ class TimeVaryingRate:
         d1 = min((b for b in bounds if b is not None), key=lambda b: float(b), default=None)
         delta2 = None if d1 is None or alpha2 is None else d1 * sympy.sqrt(alpha1 / alpha2)
         h_txt = f"h = {h_of_t}, t ≥ {self.t0}"
-        detail = (f"V̇ ≤ −{alpha}·h^{nu_} V for 0 < h ≤ H = {H} ({h_txt}); W + α h^ν U ≤ 0 coefficient-wise "
+        if lam == 1:
+            rate_txt, test_txt, env_txt = f"V̇ ≤ −{alpha}·h^{nu_} V", "W + α h^ν U ≤ 0", f"V(t0)exp(−{alpha}∫h^{nu_})"
+        else:
+            rate_txt, test_txt = f"V̇ ≤ −{alpha}·h^{nu_} V^{lam}", f"W + α h^ν n^(λ−1)Σ ū_k^λ x_k^(2λ) ≤ 0 (λ = {lam})"
+            env_txt = f"V(t0)(1 + {alpha}·({lam}−1)V(t0)^({lam}−1)∫h^{nu_})^(−1/({lam}−1))"
+        detail = (f"{rate_txt} for 0 < h ≤ H = {H} ({h_txt}); {test_txt} coefficient-wise "
                   f"({status.value}; the largest α this test allows: {float(best):.4g}); α1 = {float(alpha1):.4g}"
-                  + (f", α2 = {float(alpha2):.4g}; envelope α1‖x(t)‖² ≤ V(t) ≤ V(t0)exp(−{alpha}∫h^{nu_}) for "
+                  + (f", α2 = {float(alpha2):.4g}; envelope α1‖x(t)‖² ≤ V(t) ≤ {env_txt} for "
                      f"‖x(t0)‖ < δ2 = {float(delta2):.4g}" if delta2 is not None else ""))
         value = {"alpha": str(alpha), "nu": str(nu_), "H": str(H), "alpha1": float(alpha1),
                  "alpha2": None if alpha2 is None else float(alpha2), "alpha_largest": float(best),
-                 "delta2": None if delta2 is None else float(delta2)}
-        rows = [Result("region", "(12) V̇ ≤ −α7 h^ν V", status, value, detail)]
+                 "delta2": None if delta2 is None else float(delta2), "lam": str(lam)}
+        rows = [Result("region", self.row, status, value, detail)]
         if delta2 is not None:
-            rows.append(Result("envelope", "envelope α1‖x(t)‖² ≤ V(t) ≤ V(t0)exp(−α7∫h^ν)", status, value,
+            name = "envelope α1‖x(t)‖² ≤ V(t) ≤ V(t0)exp(−α7∫h^ν)" if lam == 1 else \
+                "envelope α1‖x(t)‖² ≤ V(t) ≤ V(t0)(1 + α8(λ−1)V(t0)^(λ−1)∫h^ν)^(−1/(λ−1))"
+            rows.append(Result("envelope", name, status, value,
                                f"for ‖x(t0)‖ < δ2 = {float(delta2):.4g}: the solution stays in the region and "
-                               f"α1‖x(t)‖² ≤ V(t) ≤ V(t0)exp(−{alpha}∫_(t0)^t h^{nu_}), α1 = {float(alpha1):.4g}"))
+                               f"α1‖x(t)‖² ≤ V(t) ≤ {env_txt.replace('∫', '∫_(t0)^t ')}, α1 = {float(alpha1):.4g}"))
         return rows, status, detail
+
+    def _power_of_u(self, U, point, x, H, lam, statuses):
+        """({x_k^{2λ}: n^{λ−1} ū_k^λ}, why): the bound of U^λ that replaces U in the test when λ ≠ 1.
+
+        U = Σ_k u_k(h) x_k² must have only pure squares of point measures (else why says so);
+        ū_k = sup_{0<h≤H} u_k (:func:`sup_on`, ≥ 0), and for λ ≥ 1, by convexity of y ↦ y^λ
+        (power means), 0 ≤ V ≤ U ≤ Σ ū_k x_k² gives V^λ ≤ (Σ_k ū_k x_k²)^λ ≤ n^{λ−1} Σ_k ū_k^λ x_k^{2λ},
+        n the number of squares.  V ≥ 0 is V ≥ L ≥ 0 (checked before).
+        """
+        if not (lam.is_number and lam.is_real and lam >= 1):
+            return None, f"the power λ = {lam} of V^λ must be a number ≥ 1 (not decided otherwise)"
+        extra = set(U) - {p**2 for p in point}
+        if extra:
+            return None, f"U^λ is bounded only for U a sum of squares of the point measures; U has {sorted(extra, key=str)}"
+        n = len(U)
+        out = {}
+        for mono, c in U.items():
+            s, why = sup_on(c, x, H)
+            if s is None:
+                return None, f"the coefficient of {mono} in U is not bounded for 0 < h ≤ H: {why}"
+            if _decided_sign(s, statuses) is None:
+                return None, f"the sign of sup of U's coefficient of {mono} not decided"
+            out[sympy.powdenest(mono ** lam, force=True)] = n ** (lam - 1) * sympy.Max(s, 0) ** lam
+        return out, None
 
     def _alpha1(self, L, point, x, H, statuses):
         """(α1, why): the smallest inf over 0 < h ≤ H of L's pure squares; why names a failing monomial."""
