@@ -1,4 +1,4 @@
-"""Theorem 2 of paper 001: nonlinear damping h(t) grad W(ω), W homogeneous of order μ + 1 > 2.
+"""Theorem 2 of paper 001 (the theorem; system, V and V̇ in :mod:`.theorem2_functional`, the chain in :mod:`.theorem2_chain`): nonlinear damping h(t) grad W(ω), W homogeneous of order μ + 1 > 2.
 
     (4)  Jω̇ + ω×Jω = −h(t) grad W(ω) − a1 s1×r1 − a2 s2×r2,
 
@@ -19,62 +19,14 @@ The first term is −h·ωᵀgrad W = −(μ+1)hW (Euler's theorem for homogeneo
 only decreases through the damping.  The claim is proved for every h, ν, γ, J, D, a1, a2.
 """
 
-import sympy
-
-from lkverify import DerivativeClaim, Functional, System, Term, Theorem, dot, norm_squared, quad, t
-from lkverify.declare.rigidbody import euler_equation, poisson_equations, restoring_torque_rate
+from lkverify import Theorem
 
 from .conditions_h import ConditionsOnH
-from .equations import PAPER, D, J, P, a1, a2, eta, gamma, h, nu, omega, r1, r2, s1, s2, s3
+from .equations import PAPER, h, nu
+from .theorem2_chain import CONCLUSION, LEFT, find_choices, steps
+from .theorem2_functional import W, derivation2, functional2, grad_W, mu, sigma, structured, system4
 
-__all__ = ["W", "grad_W", "functional2", "derivation2", "system4", "theorem2", "mu", "sigma"]
-
-#: the catalogued instance: W = (ωᵀDω)², homogeneous of order μ + 1 = 4, and σ = μ = 3 in V.  For these integers
-#: the identity is exact in seconds.  With σ a symbol it is exact too (about 20 s of CPU, a slow test of
-#: tests/catalogue/test_aleksandrov2017_theorem2.py: ‖η‖^{σ−3}, ‖η‖^{σ−1}, ‖η‖^{σ+1} share one atom in the normal
-#: forms); μ symbolic or half-integer ((ωᵀDω)^{(μ+1)/2} not polynomial) has not been tried.
-mu = sympy.Integer(3)
-sigma = sympy.Integer(3)
-
-_wDw = quad(omega(t), D)
-W = _wDw ** ((mu + 1) / 2)  # W(ω) = (ωᵀDω)^{(μ+1)/2}
-grad_W = (mu + 1) * _wDw ** ((mu - 1) / 2) * (D * omega(t))
-
-# (2), (4)
-system4 = System([
-    euler_equation(omega, J, [
-        Term(-h(t) * grad_W, text="−h(t)grad W(ω)", latex=r"-h(t)\,\mathrm{grad}\,W(\omega)"),
-        Term(-eta, text="−(a1 s1×r1 + a2 s2×r2)", latex=r"-(a_1 s_1\times r_1 + a_2 s_2\times r_2)"),
-    ], mass_text="J", mass_latex="J", gyroscopic_text="−ω×Jω", gyroscopic_latex=r"-\omega\times J\omega"),
-    *poisson_equations(omega, (s1, s2, s3)),
-], parameters=P, name="(2),(4)")
-
-_eta2 = norm_squared(eta)  # ‖η‖²
-functional2 = Functional([
-    Term(quad(omega(t), J) / 2, text="½ωᵀJω", latex=r"\tfrac12\omega^\top J\omega"),
-    Term(a1 / 2 * norm_squared(s1(t) - r1), text="(a1/2)‖s1−r1‖²", latex=r"\tfrac{a_1}{2}\|s_1-r_1\|^2"),
-    Term(a2 / 2 * norm_squared(s2(t) - r2), text="(a2/2)‖s2−r2‖²", latex=r"\tfrac{a_2}{2}\|s_2-r_2\|^2"),
-    Term(gamma * h(t) ** nu * _eta2 ** ((sigma - 1) / 2) * quad(omega(t), J, eta), text="γh^ν‖η‖^{σ−1}ωᵀJη",
-         latex=r"\gamma h^\nu(t)\|\eta\|^{\sigma-1}\omega^\top J\eta"),
-], name="V of Theorem 2")
-
-M = restoring_torque_rate(omega, (s1, s2), (r1, r2), (a1, a2))  # −η̇ by (2)
-_hd = sympy.Derivative(h(t), t)
-structured = [
-    Term(-(mu + 1) * h(t) * W, text="−(μ+1)hW"),
-    Term(gamma * nu * h(t) ** (nu - 1) * _hd * _eta2 ** ((sigma - 1) / 2) * quad(omega(t), J, eta),
-         text="γνh^{ν−1}ḣ‖η‖^{σ−1}ωᵀJη"),
-    Term(-gamma * (sigma - 1) * h(t) ** nu * _eta2 ** ((sigma - 3) / 2) * dot(eta, M) * quad(omega(t), J, eta),
-         text="−γ(σ−1)h^ν‖η‖^{σ−3}(ηᵀM)(ωᵀJη)"),
-    Term(-gamma * h(t) ** nu * _eta2 ** ((sigma - 1) / 2) * dot(omega(t).cross(J * omega(t)), eta),
-         text="−γh^ν‖η‖^{σ−1}(ω×Jω)ᵀη"),
-    Term(-gamma * h(t) ** (nu + 1) * _eta2 ** ((sigma - 1) / 2) * dot(grad_W, eta), text="−γh^{ν+1}‖η‖^{σ−1}(grad W)ᵀη"),
-    Term(-gamma * h(t) ** nu * _eta2 ** ((sigma + 1) / 2), text="−γh^ν‖η‖^{σ+1}"),
-    Term(-gamma * h(t) ** nu * _eta2 ** ((sigma - 1) / 2) * quad(omega(t), J, M), text="−γh^ν‖η‖^{σ−1}ωᵀJM"),
-]
-derivation2 = DerivativeClaim("Vdot_structured", functional2, system4, structured,
-                              description="V̇ along (2),(4) for W = (ωᵀDω)^{(μ+1)/2}, in the form the estimate with "
-                                          "α3…α6 bounds (−(μ+1)hW from Euler's theorem on homogeneous W)")
+__all__ = ["W", "grad_W", "functional2", "derivation2", "system4", "theorem2", "mu", "sigma", "structured"]
 
 theorem2 = Theorem(
     "theorem2",
@@ -83,7 +35,9 @@ theorem2 = Theorem(
     functional=functional2,
     hypotheses=[ConditionsOnH("(5), (15), (11) on h", h, nu, mu=mu, reference="(5), (15) with μ = 3, (11)")],
     claims=[derivation2],
-    unchecked=["the estimates (16) and the V̇ bound with α3…α8 as bound steps; the algebraic envelope (α8 only "
-               "estimated by sampling and the envelope compared with a run: aleksandrov2017.theorem2_example)"],
+    steps=steps,
+    decay=CONCLUSION,
+    choices=find_choices,
+    unchecked=LEFT,
     paper=PAPER,
 )
