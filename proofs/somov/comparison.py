@@ -20,10 +20,10 @@ The majorant f̃ (the text's "polynomial type"), each step an identity proved he
 * a = ¼Ḃω (Dσ̇ = ω), Ḃω = −2(σ·σ̇)ω + 2σ̇×ω + 2σ̇(σ·ω) + 2σ(σ̇·ω), ‖ω‖ = 4|σ̇|/(1 + σ²), so
   ‖a‖ ≤ 2|σ̇|²(1 + 3|σ|) ≤ 2k0‖V‖²(1 + 3‖V‖);
 
-so V̇ ≤ AV + f̃(V)·(1, 1, 1) (these norm steps are applied by hand: the result is ``estimated``, backed by
-:func:`sampled_majorant`, until they are written as checked bound steps), f̃(V) = (√3/β)·g(‖V‖), g(r) = max(0, k0r + 2k0r² + 6k0r³ − a_m/4), and
+so V̇ ≤ AV + f̃(V)·(1, 1, 1), each norm step a checked polynomial inequality with an exact certificate
+(:mod:`.norm_steps`; the row's status is the weakest of the steps'), f̃(V) = (√3/β)·g(‖V‖), g(r) = max(0, k0r + 2k0r² + 6k0r³ − a_m/4), and
 for the Euclidean norm D⁺‖V‖ ≤ φ(‖V‖) = −α‖V‖ + (3/β)g(‖V‖) (ΣVᵢ ≤ √3‖V‖).  :mod:`.region`
-turns φ into the certified region.  The identities are exact; :func:`sampled_majorant` also
+turns φ into the certified region.  The identities and the steps are exact; :func:`sampled_majorant` also
 cross-checks the bound ``V̇ᵢ ≤ −αVᵢ + f̃`` at random states of the closed loop (status ``estimated``:
 sampled, not a proof; in the tests and the notebook — it compiles the loop, ~3 s).
 
@@ -42,8 +42,9 @@ from lkverify import Check, Result, Status
 
 from .equations import PAPER, P, B, B_rate, D, SC, alpha, beta, k0, k1, u_linear
 from .identities import A, OMEGA, SD, SIG, V, matrix_identity
+from .norm_steps import chain_status, norm_steps
 
-__all__ = ["comparison", "vandermonde", "jordan_transform", "channel_form", "majorant", "phi", "sampled_majorant"]
+__all__ = ["comparison", "majorant_steps", "comparison_row", "vandermonde", "jordan_transform", "channel_form", "majorant", "phi", "sampled_majorant"]
 
 
 def _val(x, v):
@@ -119,17 +120,17 @@ def _saturated_rows(v) -> list:
                                  "σ̈ = a + ¼Bu = v + p, p = −(1 − c)(v − a)")]
     T, _ = jordan_transform(v)
     K0, K1 = _val(k0, v), _val(k1, v)
-    norms = {"|sigma_i| <= V_i": (T[0, :], 1), "|sigmadot_i| <= sqrt(k0) V_i": (T[1, :], K0),
-             "|v_i| <= k0 V_i": (sympy.Matrix([[K0, K1]]) * T, K0 ** 2)}
+    norms = {"row norm: sigma_i": (T[0, :], 1), "row norm: sigmadot_i": (T[1, :], K0),
+             "row norm: v_i": (sympy.Matrix([[K0, K1]]) * T, K0 ** 2)}
     for name, (row, sq) in norms.items():
         rows.append(matrix_identity(name, (row * row.T)[0], sq, kind="bound",
-                                    text=f"Cauchy–Schwarz with the row {sympy.sstr(row)} of xⁱ = Tx̃ⁱ: its squared norm is "
+                                    text=f"the row {sympy.sstr(row)} of xⁱ = Tx̃ⁱ (Cauchy–Schwarz below): its squared norm is "
                                          f"{sympy.sstr(sq)}"))
     sd, w = SD, OMEGA
     terms = (-2 * (s.T * sd)[0] * w + 2 * sd.cross(w) + 2 * sd * (s.T * w)[0] + 2 * s * (sd.T * w)[0])
     rows.append(matrix_identity("B_rate omega: four terms", B_rate(s, sd) * w, terms, kind="bound",
                                 text="Ḃω = −2(σ·σ̇)ω + 2σ̇×ω + 2σ̇(σ·ω) + 2σ(σ̇·ω): by the triangle and Cauchy–Schwarz "
-                                     "inequalities ‖Ḃω‖ ≤ 2|σ̇|‖ω‖(1 + 3|σ|)"))
+                                     "inequalities ‖Ḃω‖ ≤ 2|σ̇|‖ω‖(1 + 3|σ|) (the steps below)"))
     n2 = (s.T * s)[0]
     rows.append(matrix_identity("|D sigmadot|^2 = 16|sigmadot|^2/(1+|sigma|^2)^2", (D(s) * sd).T * (D(s) * sd),
                                 sympy.Matrix([16 * (sd.T * sd)[0] / (1 + n2) ** 2]), kind="bound",
@@ -137,17 +138,26 @@ def _saturated_rows(v) -> list:
     rows.append(matrix_identity("|v - a| = (1+|sigma|^2)|u_lin|/4", ((B(s) * V / 4).T * (B(s) * V / 4))[0],
                                 (1 + n2) ** 2 * (V.T * V)[0] / 16, kind="bound",
                                 text="v − a = ¼B(σ)u_lin, ‖B x‖ = (1 + σ²)‖x‖: ‖p‖ = (1 − c)‖v − a‖ ≤ "
-                                     "√3·max(0, ‖v‖ + ‖a‖ − a_m/4)"))
+                                     "√3·max(0, ‖v‖ + ‖a‖ − a_m/4) (the steps below)"))
+    return rows + norm_steps(v, T)
+
+
+def majorant_steps(v) -> list:
+    """Every row the comparison system rests on: the identities and the checked norm steps (no sampling)."""
+    return _linear_rows(v) + _saturated_rows(v)
+
+
+def comparison_row(v, steps) -> Result:
+    """The comparison system, with the weakest status of ``steps`` (exact only if every step is)."""
     r, g, ph = majorant(v)
-    sampled = sampled_majorant(v, n=1000)
-    rows.append(Result("bound", "comparison system", Status.ESTIMATED if sampled.status is Status.ESTIMATED
-                       else Status.FAILED, {"g": str(g), "phi": str(sympy.expand(ph))},
-                       f"V̇ᵢ ≤ −αVᵢ + f̃(V), f̃ = (√3/β)max(0, g(‖V‖)), g(r) = {sympy.sstr(g)}; D⁺‖V‖ ≤ φ(‖V‖) = "
-                       f"−αr + (3/β)max(0, g(r)) = {sympy.sstr(sympy.expand(ph))} where g > 0. Not proved by lkverify: "
-                       f"the identities above are exact, but the norm inequalities that combine them (triangle, "
-                       f"Cauchy–Schwarz, ‖u‖_∞ ≤ ‖u‖₂ ≤ √3‖u‖_∞) are applied by hand, not by checked rules; "
-                       f"sampled instead ({sampled.detail})"))
-    return rows
+    status, missing = chain_status(steps)
+    how = ("every identity and every norm step above is proved (exact)" if not missing
+           else f"not proved: {', '.join(missing)}")
+    return Result("bound", "comparison system", status, {"g": str(g), "phi": str(sympy.expand(ph)),
+                                                         "steps": len(steps), "not_proved": missing},
+                  f"V̇ᵢ ≤ −αVᵢ + f̃(V), f̃ = (√3/β)max(0, g(‖V‖)), g(r) = {sympy.sstr(g)}; D⁺‖V‖ ≤ φ(‖V‖) = "
+                  f"−αr + (3/β)max(0, g(r)) = {sympy.sstr(sympy.expand(ph))} where g > 0: {how}; the rules "
+                  f"x² ≤ y², x, y ≥ 0 ⇒ x ≤ y and X ≤ Y ⇒ max(0, X) ≤ max(0, Y) link the steps")
 
 
 def _lambdas(v):
@@ -197,7 +207,8 @@ def _finding_rows() -> list:
 
 
 def _check(v) -> list:
-    return _linear_rows(v) + _saturated_rows(v) + _finding_rows()
+    steps = majorant_steps(v)
+    return steps + [comparison_row(v, steps), sampled_majorant(v, n=1000)] + _finding_rows()
 
 
 comparison = Check("comparison", parameters=P, checks=[_check], paper=PAPER, relevant=("alpha", "beta", "a_m"),

@@ -12,7 +12,9 @@ g(r) = k0r + 2k0r² + 6k0r³ − a_m/4:
   isolation: status ``exact``.
 * In the initial data (the text's |σ(t0)|, ‖ω(t0)‖): ‖V‖² = Q₁₁|σ|² + 2Q₁₂σ·σ̇ + Q₂₂|σ̇|² (Q of
   :mod:`.comparison`) with |σ̇| = ¼(1 + |σ|²)‖ω‖, so every initial state with
-  Q₁₁s² + 2|Q₁₂|s·y + Q₂₂y² < ρ*², s = |σ(t0)|, y = ¼(1 + s²)‖ω(t0)‖, is attracted.
+  Q₁₁s² + 2|Q₁₂|s·y + Q₂₂y² < ρ*², s = |σ(t0)|, y = ¼(1 + s²)‖ω(t0)‖, is attracted.  The row's
+  status is computed from the comparison system's steps (:func:`.comparison.majorant_steps`,
+  :func:`.norm_steps.chain_status`): ``exact`` only if every identity and norm step is.
 
 ``lkverify constants somov.region`` simulates the closed loop (3), (11) on a grid of (|σ0|, ‖ω0‖)
 (four direction pairs each, :mod:`.grid`) and compares: the region's set must lie inside the
@@ -32,9 +34,10 @@ import sympy
 
 from lkverify import Check, Report, Result, Status
 
-from .comparison import channel_form, majorant
+from .comparison import channel_form, majorant, majorant_steps
 from .equations import PAPER, P
 from .grid import run_grid, run_points
+from .norm_steps import chain_status, inequality_step
 
 __all__ = ["CertifiedRegion", "certified_region", "check_radius", "region", "RegionConstants", "W_RANGE"]
 
@@ -116,30 +119,49 @@ def check_radius(v, rho) -> Result:
                   f"(ρ* = {float(reg.rho):.6g}; exact)")
 
 
+def initial_data_step(Q) -> Result:
+    """‖V‖² = Q₁₁|σ|² + 2Q₁₂σ·σ̇ + Q₂₂|σ̇|² ≤ Q₁₁s² + 2|Q₁₂|s·y + Q₂₂y² from |σ·σ̇| ≤ s·y (Cauchy–Schwarz)."""
+    q11, q12, q22 = (sympy.sympify(x) for x in Q)
+    s, y = sympy.symbols("s y", nonnegative=True)
+    t = sympy.Symbol("t", real=True)
+    h = s * y - sympy.sign(q12) * t
+    return inequality_step("||V(t0)||^2 <= Q11 s^2 + 2|Q12| s y + Q22 y^2",
+                           q11 * s ** 2 + 2 * abs(q12) * s * y + q22 * y ** 2 - (q11 * s ** 2 + 2 * q12 * t + q22 * y ** 2),
+                           [(2 * abs(q12), [h], 1)], hyps=[h],
+                           text="t = σ·σ̇ with |t| ≤ s·|σ̇| (Cauchy–Schwarz) and |σ̇| = ¼(1 + s²)‖ω‖ = y (‖B(σ)ω‖ = "
+                                "(1 + σ²)‖ω‖)")
+
+
 def _region_rows(v) -> list:
     r, g, psi = majorant(v)
     reg = certified_region(v)
     ok = reg.r0 is not None and reg.rho is not None
+    Qm = channel_form(v)
+    init = initial_data_step((Qm[0, 0], Qm[0, 1], Qm[1, 1]))
+    comp, missing = chain_status(majorant_steps(v) + [init])
+    rests = ("the comparison system D⁺‖V‖ ≤ φ(‖V‖) is exact (somov.comparison: identities and checked norm "
+             "steps), and so is the bound on ‖V(t0)‖ above"
+             if not missing else f"the comparison system is not proved (somov.comparison: {', '.join(missing)})")
     rows = [Result("constant", "r0 (saturation inactive)", Status.EXACT, {"value": float(reg.r0), "exact": str(reg.r0)},
                    f"g(r) = {sympy.sstr(g)} has the single positive root r0 = {float(reg.r0):.6g}: on ‖V‖ ≤ r0 the "
                    f"bound on ‖p‖ is 0, i.e. ‖D(v − a)‖₂ ≤ a_m and SC is inactive (the root exact; the bound on ‖p‖ "
-                   f"is the hand-applied norm step of somov.comparison)"),
+                   f"is the checked norm chain of somov.comparison)"),
             Result("region", "rho* (comparison system)", Status.EXACT if ok else Status.FAILED,
                    {"value": float(reg.rho) if reg.rho is not None else None, "exact": str(reg.rho)},
                    f"ψ(r) = −αr + (3/β)g(r) = {sympy.sstr(sympy.expand(psi))}: ψ(r0) = −αr0 < 0 and its first root "
                    f"above r0 is ρ* = {float(reg.rho):.6g} (ψ(r0) = −αr0 since g(r0) = 0; every real root of ψ isolated exactly): "
-                   f"φ < 0 on (0, ρ*) (exact); that ‖V(t0)‖ < ρ* then gives ‖V(t)‖ ↓ 0 and (5) rests on the comparison "
-                   f"system (estimated, see somov.comparison)")]
+                   f"φ < 0 on (0, ρ*) (exact)")]
     smax, wmax = reg.s_max, reg.w_max
-    rows.append(Result("region", "initial data in the region", Status.ESTIMATED,
+    status = Status.EXACT if ok and not missing else (Status.FAILED if comp is Status.FAILED or not ok else Status.UNDECIDED)
+    rows.append(init)
+    rows.append(Result("region", "initial data in the region", status,
                        {"s_max": float(smax), "Phi_max_deg": float(4 * sympy.atan(smax) * 180 / sympy.pi),
-                        "w_max": float(wmax), "Q": [str(x) for x in reg.Q]},
+                        "w_max": float(wmax), "Q": [str(x) for x in reg.Q], "not_proved": missing},
                        f"attracted if Q₁₁s² + 2|Q₁₂|s·y + Q₂₂y² < ρ*², s = |σ(t0)|, y = ¼(1+s²)‖ω(t0)‖, "
                        f"(Q₁₁, |Q₁₂|, Q₂₂) = ({', '.join(sympy.sstr(x) for x in reg.Q)}): at ω0 = 0 |σ0| < "
                        f"{float(smax):.4g} (Φ0 < {float(4 * sympy.atan(smax) * 180 / sympy.pi):.3g}°), at σ0 = 0 "
-                       f"‖ω0‖ < {float(wmax):.4g} rad/s (a_m = {v['a_m']}); exact given the comparison system "
-                       f"D⁺‖V‖ ≤ φ(‖V‖), whose norm steps are applied by hand and sampled (somov.comparison): the "
-                       f"region is as sure as that step, so estimated"))
+                       f"‖ω0‖ < {float(wmax):.4g} rad/s (a_m = {v['a_m']}); ρ* exact and {rests}: "
+                       f"{'the region is exact' if status is Status.EXACT else 'the region is not established'}"))
     return rows
 
 
@@ -188,7 +210,7 @@ class RegionConstants:
         ax.scatter(S[grid.converged], Wg[grid.converged], s=14, c="tab:green", label="converged (all 4 directions)")
         ax.scatter(S[~grid.converged], Wg[~grid.converged], s=18, marker="x", c="tab:red", label="not converged")
         ss = np.linspace(0, float(reg.s_max), 400)
-        ax.fill_between(ss, 0, reg.w_boundary(ss), color="tab:blue", alpha=0.35, label="region (comparison system; its norm steps by hand)")
+        ax.fill_between(ss, 0, reg.w_boundary(ss), color="tab:blue", alpha=0.35, label="region (comparison system, checked steps)")
         ax.set_xlabel(r"$|\sigma(t_0)|$")
         ax.set_ylabel(r"$\|\omega(t_0)\|$ (rad/s)")
         v = extra["values"]

@@ -15,6 +15,7 @@ sat = importlib.import_module("lkverify.proofs.somov.saturation")
 comp = importlib.import_module("lkverify.proofs.somov.comparison")
 reg = importlib.import_module("lkverify.proofs.somov.region")
 ids = importlib.import_module("lkverify.proofs.somov.identities")
+ns = importlib.import_module("lkverify.proofs.somov.norm_steps")
 
 DEFAULTS = equations.P.resolve({})
 
@@ -113,11 +114,78 @@ def test_SC_written_with_min_passes():
 def test_comparison_rows():
     rep = comp.comparison.run({})
     st = _status(rep.results)
-    assert all(s is Status.EXACT for n, s in st.items() if n not in ("text: x2 = omega/4", "comparison system"))
+    assert all(s is Status.EXACT for n, s in st.items() if n not in ("text: x2 = omega/4", "comparison system (sampled)"))
     assert st["text: x2 = omega/4"] is Status.FAILED      # finding: x₂ = σ̇ = ¼Bω ≠ ω/4 away from σ = 0
-    # the norm steps combining the exact identities are applied by hand: sampled, never labelled exact
-    assert st["comparison system"] is Status.ESTIMATED
+    # every norm step is a checked inequality: the comparison system is exact; the sampled cross-check stays
+    assert st["comparison system"] is Status.EXACT
+    assert st["comparison system (sampled)"] is Status.ESTIMATED
     assert rep.exit_code == 1
+
+
+# -- the norm steps of the comparison system as checked inequalities ------------------------------
+def _T(v):
+    return comp.jordan_transform(v)[0]
+
+
+def test_norm_steps_exact_at_two_instances():
+    for v in (DEFAULTS, equations.P.resolve({"alpha": "2", "beta": "1/3", "a_m": "1/7"})):
+        steps = ns.norm_steps(v, _T(v))
+        assert len(steps) == 21 and all(r.status is Status.EXACT for r in steps), [r.detail for r in steps
+                                                                                    if r.status is not Status.EXACT]
+        assert ns.chain_status(steps) == (Status.EXACT, [])
+
+
+def _refuted(row):
+    assert row.status is Status.FAILED, row.detail
+    assert row.value["witness"], row.detail
+    return row
+
+
+def test_norm_steps_dropped_sqrt3_refuted():
+    rows = {r.name: r for r in ns._rows_saturation(DEFAULTS, root3=1)}
+    _refuted(rows["|u|_2 <= sqrt(3) |u|_inf"])          # ‖u‖₂ ≤ ‖u‖_∞ is false at u = (1, 1, 1)
+    _refuted(rows["sum V_i <= sqrt(3) ||V||"])           # ΣVᵢ ≤ ‖V‖ is false at V = (1, 1, 1)
+
+
+def test_norm_steps_wrong_power_refuted():
+    K0 = ns._val(equations.k0, DEFAULTS)
+    rows = {r.name: r for r in ns._rows_channel(DEFAULTS, _T(DEFAULTS), K={"sigma": 1, "sigmadot": K0, "v": K0})}
+    _refuted(rows["|sigmadot_i| <= sqrt(k0) V_i"])       # k0 in place of √k0
+    _refuted(ns._rows_a(DEFAULTS, cube=4)[1])             # 2k0r²(1 + 3r²) in place of 2k0r²(1 + 3r)
+
+
+def test_norm_steps_saturation_with_a_m_over_2_refuted():
+    rows = {r.name: r for r in ns._rows_saturation(DEFAULTS, quarter=sympy.Rational(1, 2))}
+    row = _refuted(rows["|v - a| - a_m(1+s^2)/4 <= |v| + |a| - a_m/4"])
+    assert row.value["witness"]["s"] == "0"
+
+
+def test_inequality_step_true_claims_written_differently_pass():
+    m, n = sympy.symbols("m n", nonnegative=True)
+    am = sympy.Rational(1, 100)
+    # the saturation step without √3 also holds: (1 − c)n ≤ n − a_m (times m: a_m(n − m) ≥ 0)
+    hs = [n - m, m - am]
+    assert ns.inequality_step("sharper", m * (n - am) - (m - am) * n, [(am, [hs[0]], 1)], hyps=hs,
+                              text="").status is Status.EXACT
+    # a weaker constant than needed (|σᵢ| ≤ 2Vᵢ) passes with the same form of certificate
+    rows = {r.name: r for r in ns._rows_channel(DEFAULTS, _T(DEFAULTS), K={"sigma": 2, "sigmadot": 1, "v": 1})}
+    assert all(r.status is Status.EXACT for r in rows.values())
+    # a true claim with a certificate that does not match is undecided, not refuted
+    x = sympy.Symbol("x", real=True)
+    assert ns.inequality_step("x", x ** 2 + 1, [(1, [], x)], text="").status is Status.UNDECIDED
+
+
+def test_region_exact_only_when_every_step_is(monkeypatch):
+    good = comp.majorant_steps(DEFAULTS)
+    for mutated, expected in ((ns._rows_saturation(DEFAULTS, root3=1)[1], Status.FAILED),
+                              (ns.inequality_step("unproved", sympy.Symbol("x", real=True) ** 2 + 1, [], text=""),
+                               Status.UNDECIDED)):
+        steps = good + [mutated]
+        assert comp.comparison_row(DEFAULTS, steps).status is expected
+        monkeypatch.setattr(reg, "majorant_steps", lambda v, steps=steps: steps)
+        st = _status(reg.region.run({}).results)
+        assert st["initial data in the region"] is expected
+        assert st["rho* (comparison system)"] is Status.EXACT
 
 
 def test_majorant_holds_at_random_states():
@@ -142,9 +210,8 @@ def test_wrong_jordan_block_refuted():
 def test_region_exact_and_consistent():
     rows = reg.region.run({}).results
     st = _status(rows)
-    # r0, ρ* exact; the initial-data region rests on the comparison system (norm steps by hand): estimated
-    assert st["initial data in the region"] is Status.ESTIMATED
-    assert all(s is Status.EXACT for n, s in st.items() if n != "initial data in the region")
+    # r0, ρ* exact; the initial-data region rests on the comparison system, whose steps are all checked: exact
+    assert all(s is Status.EXACT for s in st.values()), st
     R = reg.certified_region(DEFAULTS)
     # ψ(ρ*) = 0, g(r0) = 0 (numerically, at 30 digits) and 0 < r0 < ρ*
     r, g, psi = comp.majorant(DEFAULTS)
