@@ -20,6 +20,7 @@ Modules: :mod:`.equations` (parameters, B, D, a, v, u, SC and the closed loop),
 :mod:`.kinematics` (σ̇ = ¼Bω from the quaternion equation, (7), the short rotation),
 :mod:`.linearisation` ((8)–(10): σ̈ = v exactly), :mod:`.saturation` (SC of (11): bound, direction,
 inactive set), :mod:`.comparison` (the vector Lyapunov function and the comparison system),
+:mod:`.norm_steps` (the comparison system's norm inequalities as steps with exact certificates),
 :mod:`.region` (the certified region of attraction; against a simulated grid with ``lkverify
 constants``), :mod:`.grid` (batch runs), :mod:`.example` (closed loops saturating and not).
 """

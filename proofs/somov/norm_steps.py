@@ -183,7 +183,8 @@ def _rows_saturation(v, root3=_R3, quarter=sympy.Rational(1, 4)) -> list:
     m, n, am = *_nn("m n"), sympy.sympify(v["a_m"])
     hyp_u = [m ** 2 - ui ** 2 for ui in u]
     rows = [inequality_step("|u|_inf <= |u|_2", sum(ui ** 2 for ui in u) - u[0] ** 2, [(1, [], u[1]), (1, [], u[2])],
-                            text="m = |u₁| (the largest component, renumbered): ‖u‖₂² − m² = u₂² + u₃²"),
+                            text="a component is at most the norm (‖u‖_∞ ≤ ‖u‖₂, and |pᵢ| ≤ ‖p‖ in the step V̇ᵢ ≤ −αVᵢ + f̃): "
+                                 "m = |u₁| (renumbered), ‖u‖₂² − m² = u₂² + u₃²"),
             inequality_step("|u|_2 <= sqrt(3) |u|_inf", root3 ** 2 * m ** 2 - sum(ui ** 2 for ui in u),
                             [(1, [h], 1) for h in hyp_u], hyps=hyp_u,
                             text=f"m² ≥ uᵢ² (i = 1, 2, 3): ‖u‖₂² ≤ {sympy.sstr(root3 ** 2)}m²")]
