@@ -1,4 +1,4 @@
-"""Theorem 2 of paper 001 (the theorem; system, V and V̇ in :mod:`.theorem2_functional`, the chain in :mod:`.theorem2_chain`): nonlinear damping h(t) grad W(ω), W homogeneous of order μ + 1 > 2.
+"""Theorem 2 of paper 001: nonlinear damping h(t) grad W(ω), W homogeneous of order μ + 1 > 2.
 
     (4)  Jω̇ + ω×Jω = −h(t) grad W(ω) − a1 s1×r1 − a2 s2×r2,
 
@@ -17,20 +17,23 @@ bounds term by term (M = a1(ω×s1)×r1 + a2(ω×s2)×r2 = −η̇):
 
 The first term is −h·ωᵀgrad W = −(μ+1)hW (Euler's theorem for homogeneous W): the energy
 only decreases through the damping.  The claim is proved for every h, ν, γ, J, D, a1, a2.
+
+The system, V and V̇ are in :mod:`.theorem2_functional`; the chain (16), V̇ ≤ W, V̇ ≤ −α8h^νV^λ and the
+algebraic envelope, checked exact/certified at choices found at the run's values, in :mod:`.theorem2_chain`.
 """
 
 from lkverify import Theorem
 
 from .conditions_h import ConditionsOnH
 from .equations import PAPER, h, nu
-from .theorem2_chain import CONCLUSION, LEFT, find_choices, steps
+from .theorem2_chain import CONCLUSION, find_choices, steps
 from .theorem2_functional import W, derivation2, functional2, grad_W, mu, sigma, structured, system4
 
 __all__ = ["W", "grad_W", "functional2", "derivation2", "system4", "theorem2", "mu", "sigma", "structured"]
 
 theorem2 = Theorem(
     "theorem2",
-    title="Theorem 2: nonlinear damping h(t)grad W, instance W = (ωᵀDω)² (μ = 3), σ = 3; (15), (11) decided, V̇ exact",
+    title="Theorem 2: nonlinear damping h(t)grad W, instance W = (ωᵀDω)² (μ = 3), σ = 3, to V̇ ≤ −α8h^νV^λ",
     system=system4,
     functional=functional2,
     hypotheses=[ConditionsOnH("(5), (15), (11) on h", h, nu, mu=mu, reference="(5), (15) with μ = 3, (11)")],
@@ -38,6 +41,5 @@ theorem2 = Theorem(
     steps=steps,
     decay=CONCLUSION,
     choices=find_choices,
-    unchecked=LEFT,
     paper=PAPER,
 )

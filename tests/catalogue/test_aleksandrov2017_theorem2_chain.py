@@ -1,9 +1,9 @@
-"""Paper 001 Theorem 2: the estimates (16) as bound steps (proofs/aleksandrov2017/theorem2_chain.py).
+"""Paper 001 Theorem 2 checked to its conclusion (proofs/aleksandrov2017/theorem2_chain.py).
 
-The chain at the section 6 gains with h = (1+t)^{−7/8} (choices by find_choices), L and U compared
-with closed forms computed here, and mutations: a flipped sign, a dropped term, a wrong constant, a
-region that does not bound ‖s2 − r2‖, an h that fails (11).  V̇ ≤ W is not encoded yet (LEFT), so the
-verdict names it; the power conclusion (lam = λ = 2) is tested in tests/certify/test_timevarying.py.
+The chain at the section 6 gains with h = (1+t)^{−7/8} (choices by find_choices): (16), V̇ ≤ W over the
+seven terms of the exact V̇, V̇ ≤ −α8 h^ν V^λ (λ = 2) and the algebraic envelope; L and U compared with
+closed forms computed here, and mutations: a wrong α8, a dropped term, a flipped sign, a region too large,
+a dropped Lemma 1 term in W, an h that fails (11).  The power conclusion itself: tests/certify/test_timevarying.py.
 """
 
 import pytest
@@ -34,8 +34,13 @@ def checked(values):
     return {s.role: (s, s.check(values, budget=60)) for s in chain.steps}
 
 
-def test_choices_are_exact(chosen):
-    assert chosen == {"gamma": "833/10000", "delta1": "1/2", "delta_w": "1/2"}  # γ ≈ ½·min(4/12, 1/6), rounded down
+def _rate(checked, values, **over):
+    return chain.CONCLUSION.certify(checked, {**values, **{k: sympy.sympify(v) for k, v in over.items()}})
+
+
+def test_choices_are_exact_and_positive(chosen):
+    assert set(chosen) == {"gamma", "eps", "delta1", "delta_w", "eta_w", "eta_h2", "alpha8"}
+    assert all(R(v) > 0 for v in chosen.values()) and chosen["eps"] == chosen["delta1"] == chosen["delta_w"] == "1/2"
 
 
 def test_estimates_16_proved_with_closed_form_coefficients(checked, values, chosen):
@@ -47,9 +52,71 @@ def test_estimates_16_proved_with_closed_form_coefficients(checked, values, chos
         assert res.status is Status.EXACT, res.detail
         # ½ωᵀJω, (a_i/2)e_i², ±γh‖J‖(a1+a2)²δ1²·Σa_i(w² + e_i²)/2 with ‖J‖ = 6, a_i = 1, δ1 = 1/2
         want = R(jj, 2) * w**2 + (e1**2 + e2**2) / 2 + sign * 6 * g * hh * (2 * w**2 + e1**2 + e2**2) / 2
-        got = step.rhs.xreplace(P.substitution(values)).xreplace(sub)
-        got = got.subs({chain.gamma: g, chain.delta1: R(1, 2), chain.a1: 1, chain.a2: 1})
+        got = step.rhs.xreplace(sub).subs({chain.gamma: g, chain.delta1: R(1, 2), chain.a1: 1, chain.a2: 1})
         assert sympy.expand(got - want) == 0
+
+
+def test_vdot_bound_proved_term_by_term(checked):
+    res = checked["vdot"][1]
+    assert res.status is Status.CERTIFIED, res.detail  # Lemma 1 certified on the region, every other rule exact
+    assert len(res.terms) == 7 and sum(tr.status is Status.EXACT for tr in res.terms) == 6
+    fifteen = next(tr for tr in res.terms if tr.terms == ("γνh^{ν−1}ḣ‖η‖^{σ−1}ωᵀJη",))
+    assert "L = 7/8" in str([a.to_json() for a in fifteen.applications])  # (15): sup |ḣ|/h = 7/8
+
+
+def test_conclusion_certified_with_its_constants(checked, values, chosen):
+    rows, status, detail = _rate(checked, values)
+    assert status is Status.CERTIFIED, detail  # certified: the V̇ step's Lemma 1
+    v = rows[0].value
+    g = R(chosen["gamma"])
+    assert v["H"] == "1" and v["lam"] == "2"
+    assert v["alpha1"] == pytest.approx(float(min(2 - 6 * g, R(1, 2) - 3 * g)), rel=1e-12)
+    assert v["alpha2"] == pytest.approx(float(max(3 + 6 * g, R(1, 2) + 3 * g)), rel=1e-12)
+    assert v["delta2"] == pytest.approx(0.5 * (v["alpha1"] / v["alpha2"]) ** 0.5, rel=1e-12)
+    assert float(R(chosen["alpha8"])) <= v["alpha_largest"]
+    assert rows[1].kind == "envelope" and "∫_(t0)^t h^1)^(−1/(2−1))" in rows[1].detail
+
+
+def test_wrong_alpha8_refuted_at_a_monomial(checked, values):
+    too_big = sympy.nsimplify(_rate(checked, values)[0][0].value["alpha_largest"]) * R(11, 10)
+    status, detail = _rate(checked, values, alpha8=too_big)[1:]
+    assert status is Status.FAILED and detail.startswith("fails at the monomial")
+
+
+def test_a_smaller_alpha8_written_differently_passes(checked, values, chosen):
+    half = R(chosen["alpha8"]) / 2
+    assert _rate(checked, values, alpha8=sympy.sqrt(half**2))[1] is Status.CERTIFIED
+
+
+def test_dropped_lemma_term_in_w_refuted_by_the_conclusion(checked, values):
+    step, res = checked["vdot"]
+    lemma = next(tb for tb in step.bounds if tb.terms == ("−γh^ν‖η‖^{σ+1}",))
+    weaker = step.with_bounds(bounds=[tb if tb is not lemma else type(tb)(tb.terms, sympy.S.Zero, tb.rule)
+                                      for tb in step.bounds], rhs=step.rhs - lemma.bound)
+    res2 = weaker.check(values, search=False)
+    status, detail = chain.CONCLUSION.certify({**checked, "vdot": (weaker, res2)}, values)[1:]
+    assert status is Status.FAILED and "e1**4" in detail
+
+
+def test_a_region_too_large_fails_lemma1(values):
+    res = chain.steps[2].check({**values, "delta1": R(2)}, search=False)
+    bad = [tr for tr in res.terms if not tr.status.is_proof]
+    assert not res.status.is_proof and [tr.terms for tr in bad] == [("−γh^ν‖η‖^{σ+1}",)]
+    assert "the region allows σ = sin(φ/2) up to" in bad[0].detail  # Lemma 1 needs σ < 1
+
+
+def test_a_dropped_vdot_bound_leaves_a_term_uncovered(values):
+    step = chain.steps[2]
+    res = step.with_bounds(bounds=step.bounds[:-1]).check(values, search=False)
+    assert res.status is Status.UNDECIDED and "lhs terms without a bound: −γh^ν‖η‖^{σ−1}ωᵀJM" in res.detail
+
+
+def test_flipped_sign_in_vdot_not_proved(values):
+    step = chain.steps[2]
+    last = step.bounds[-1]
+    res = step.with_bounds(bounds=[type(last)(last.terms, -last.bound, last.rule)], part=last.terms,
+                           rhs=-last.bound).check(values, search=False)
+    assert not res.status.is_proof and "the stated bound is not the rule's" in res.terms[0].detail
 
 
 def test_the_eta_bound_is_the_norm_tree_and_the_region(values):
@@ -93,11 +160,10 @@ def test_the_conclusion_is_the_power_rate_and_11_is_decided():
     assert bad.status is Status.FAILED and "(11)" in bad.text
 
 
-@pytest.mark.slow  # about 9 s: the V̇ identity
-def test_the_verdict_names_vdot_and_set_h_fails_at_11():
+@pytest.mark.slow  # about 12 s: the V̇ identity and the chain, twice
+def test_established_and_set_h_fails_at_11():
     report = theorem2.run({}, budget=60)
-    assert report.verdict.startswith("not established: missing: V̇ ≤ W on the region")
-    assert "V ≥ L (bound step, term by term) (exact), V ≤ U (bound step, term by term) (exact)" in report.verdict
+    assert report.verdict.startswith("established"), report.verdict
     report = theorem2.run({"h": "(1+t)**(-8/7)"}, budget=60)
     hyp = next(r for r in report.results if r.kind == "hypothesis")
     assert hyp.status is Status.FAILED and "(11)" in hyp.detail
