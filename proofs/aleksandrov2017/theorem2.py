@@ -27,6 +27,7 @@ from lkverify import Theorem
 from .conditions_h import ConditionsOnH
 from .equations import PAPER, h, nu
 from .theorem2_chain import CONCLUSION, find_choices, steps
+from .theorem2_envelope import ProvedEnvelopeAgainstRun
 from .theorem2_functional import W, derivation2, functional2, grad_W, mu, sigma, structured, system4
 
 __all__ = ["W", "grad_W", "functional2", "derivation2", "system4", "theorem2", "mu", "sigma", "structured"]
@@ -41,5 +42,6 @@ theorem2 = Theorem(
     steps=steps,
     decay=CONCLUSION,
     choices=find_choices,
+    constants=ProvedEnvelopeAgainstRun(),
     paper=PAPER,
 )

@@ -31,9 +31,10 @@ from lkverify import Status, t
 from lkverify.simulate import RunClaim
 
 from .equations import P, gamma, h
-from .theorem2 import functional2, sigma, structured, system4
+from .theorem2_functional import functional2, sigma, structured, system4
 
-__all__ = ["Alpha8Estimate", "AlgebraicEnvelope", "LAMBDA", "algebraic_envelope", "estimate_alpha8"]
+__all__ = ["Alpha8Estimate", "AlgebraicEnvelope", "LAMBDA", "ProvedEnvelopeAgainstRun", "algebraic_envelope",
+           "estimate_alpha8"]
 
 #: λ = (σ + 1)/2, the power of V in V̇ ≤ −α8 h^ν V^λ
 LAMBDA = (sigma + 1) / 2
@@ -272,3 +273,88 @@ def _h_of(values):
     """The run's h(t) as an expression in t."""
     resolved = P.resolve(dict(values or {}))
     return h(t).subs(P.substitution(resolved)).doit()
+
+
+class ProvedEnvelopeAgainstRun:
+    """The constants job of Theorem 2: the *proved* α8 and its algebraic envelope against a run of (2),(4).
+
+    ``lkverify constants aleksandrov2017.theorem2`` checks the chain of :mod:`.theorem2_chain` at the
+    run's values (γ, α8, … found as in ``check``; V̇ ≤ −α8 h^ν V^λ certified), takes the section 6
+    initial attitude and ω scaled down until ‖x(t0)‖ < δ2 (so the solution stays in the region),
+    simulates (2),(4) and compares along it, with the proved γ in V,
+
+        V(t) ≤ V(t0)(1 + α8(λ−1)V(t0)^{λ−1}∫_0^t h^ν)^{−1/(λ−1)}     (status ``simulated``).
+
+    For comparison only, the sampled α8 of :func:`estimate_alpha8` at the same γ and δ2 is reported
+    (labelled estimated: an upper estimate of the best α8, not a proof).
+    """
+
+    goals = ["default"]
+    T_END = 400.0
+
+    def run(self, item_name, values, shown, *, budget=120.0, progress=None, goal=None):
+        """(Report, data for :meth:`plot`)."""
+        from lkverify import Report, Result
+        from lkverify.simulate import simulate
+
+        from .example import INITIAL, initial_history
+        from .theorem2 import theorem2
+
+        progress = progress or (lambda msg: None)
+        progress(f"{item_name}: the chain at the run's values")
+        report = theorem2.run(values, budget=budget)
+        rate = next((r for r in report.results if r.name == "V̇ ≤ −α8 h^ν V^λ"), None)
+        if rate is None or rate.value is None or rate.value.get("delta2") is None or not rate.status.is_proof:
+            row = Result("simulation", "proved envelope against a run", Status.UNDECIDED, None,
+                         f"the chain gives no proved envelope at these values: {report.verdict}")
+            return Report(item_name, dict(shown), tuple(report.results) + (row,), report.verdict), {}
+        v = {**values, **{k: sympy.Rational(x) for k, x in theorem2.chosen(values).items()}}
+        a8, delta2, g = float(sympy.Rational(rate.value["alpha"])), rate.value["delta2"], float(v["gamma"])
+        R0 = _targets(v)
+        scale = 1.0
+        for _ in range(12):  # the section 6 history, scaled until ‖x(t0)‖ < δ2
+            hist = initial_history(tuple(scale * a for a in INITIAL.angles), tuple(scale * x for x in INITIAL.omega))
+            x0 = float(np.sqrt(sum(np.sum((np.array(hist[f"s{i}"], dtype=float) - R0[:, i - 1]) ** 2) for i in (1, 2))
+                               + np.sum((scale * np.array(INITIAL.omega)) ** 2)))
+            if x0 < 0.9 * delta2:
+                break
+            scale /= 2
+        progress(f"{item_name}: simulating (2),(4) to t = {self.T_END:g} from ‖x(t0)‖ = {x0:.4g} < δ2 = {delta2:.4g}")
+        times = np.linspace(0.0, self.T_END, 2001)
+        tr = simulate(system4, history=hist, t_end=self.T_END, t_eval=times,
+                      values={k: v[k] for k in ("J", "D", "a1", "a2", "h", "r1", "r2", "r3")})
+        V = proof_V(v, gamma_value=g)(tr.t, tr.states)
+        _, _, integ = _h_after(v, tr.t)
+        env = algebraic_envelope(float(V[0]), a8, integ)
+        ratio = float(np.max(V / env))
+        est = estimate_alpha8(v, gamma_value=g, delta=float(delta2), h_max=1.0, rho_range=(-1.0, 0.0), samples=4000)
+        ok = ratio <= 1 + 1e-9
+        detail = (f"α8 = {a8:.4g} proved (certified chain), γ = {g:.3g}, from the section 6 attitude and ω scaled by "
+                  f"{scale:g} (‖x(t0)‖ = {x0:.4g} < δ2 = {delta2:.4g}), h = {_h_of(v)}, t ∈ [0, {self.T_END:g}], "
+                  f"{tr.outcome.value}: max V(t)/envelope = {ratio:.4g} ({'≤ 1: holds' if ok else '> 1: VIOLATED'}); "
+                  f"V(t_end)/V(t0) = {V[-1] / V[0]:.3g} against the envelope's {env[-1] / env[0]:.3g}; for comparison "
+                  f"only, α8 estimated by sampling at the same γ, δ2: {est.alpha8:.3g} (not proved)")
+        row = Result("simulation", "proved algebraic envelope V(t) ≤ V(t0)(1 + α8(λ−1)V(t0)^(λ−1)∫h^ν)^(−1/(λ−1))",
+                     Status.SIMULATED if ok else Status.FAILED,
+                     {"largest_ratio": ratio, "alpha8": a8, "alpha8_estimated_for_comparison": est.alpha8,
+                      "gamma": g, "delta2": delta2, "scale": scale, "x0": x0, "t_end": self.T_END}, detail)
+        verdict = f"{report.verdict.split(';')[0]}; proved envelope along the run: {row.status.value} ({ratio:.4g})"
+        data = {"t": tr.t, "V": V, "envelope": env, "ratio": ratio}
+        return Report(item_name, dict(shown), tuple(report.results) + (row,), verdict), data
+
+    def plot(self, extra, path, *, values=None):
+        """V(t) and its proved algebraic envelope."""
+        from matplotlib.figure import Figure
+
+        fig = Figure(figsize=(7.5, 4.5))
+        ax = fig.subplots()
+        if extra:
+            ax.semilogy(extra["t"], extra["envelope"], "k--", lw=1.2, label="proved algebraic envelope")
+            ax.semilogy(extra["t"], extra["V"], lw=1.4, label="$V(t)$ (simulated)")
+            ax.set_title(f"Theorem 2 of paper 001: the proved envelope along a run (largest ratio {extra['ratio']:.3g})",
+                         fontsize=10)
+        ax.set_xlabel("$t$")
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        fig.savefig(path, dpi=120)
