@@ -168,3 +168,14 @@ def test_established_and_set_h_fails_at_11():
     hyp = next(r for r in report.results if r.kind == "hypothesis")
     assert hyp.status is Status.FAILED and "(11)" in hyp.detail
     assert "failed" in report.verdict.split(";")[0], report.verdict
+
+
+@pytest.mark.slow  # about 15 s: the chain, a 400 s run and the sampled comparison
+def test_proved_envelope_holds_along_a_run_inside_delta2():
+    report, data = theorem2.run_constants({}, budget=120)
+    row = report.results[-1]
+    assert row.status is Status.SIMULATED and row.value["largest_ratio"] <= 1 + 1e-9
+    assert row.value["x0"] < row.value["delta2"]
+    # the proved α8 is below the sampled one at the same γ, δ2 (the estimate is an upper estimate)
+    assert row.value["alpha8"] <= row.value["alpha8_estimated_for_comparison"]
+    assert "for comparison only" in row.detail and "(not proved)" in row.detail
