@@ -179,3 +179,18 @@ def test_proved_envelope_holds_along_a_run_inside_delta2():
     # the proved α8 is below the sampled one at the same γ, δ2 (the estimate is an upper estimate)
     assert row.value["alpha8"] <= row.value["alpha8_estimated_for_comparison"]
     assert "for comparison only" in row.detail and "(not proved)" in row.detail
+
+
+def test_product_rule_refuses_a_wrong_factor_and_proves_the_same_bound_written_differently(values):
+    import dataclasses
+
+    step = chain.steps[2]
+    tb = next(b for b in step.bounds if b.terms == ("−γ(σ−1)h^ν‖η‖^{σ−3}(ηᵀM)(ωᵀJη)",))
+    half = dataclasses.replace(tb.rule, factor=tb.rule.factor / 2)  # −γh^ν(ηᵀM)(ωᵀJη): not the term
+    res = step.with_bounds(bounds=[type(tb)(tb.terms, tb.bound / 2, half, then=tb.then)], part=tb.terms,
+                           rhs=tb.bound / 2).check(values, search=False)
+    assert not res.status.is_proof and "the term is" in res.terms[0].detail
+    swapped = dataclasses.replace(tb.rule, first=tb.rule.second, second=tb.rule.first)  # the factors swapped
+    res = step.with_bounds(bounds=[type(tb)(tb.terms, tb.bound, swapped, then=tb.then)], part=tb.terms,
+                           rhs=tb.bound).check(values, search=False)
+    assert res.status is Status.EXACT, res.detail
