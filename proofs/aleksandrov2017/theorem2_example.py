@@ -21,7 +21,7 @@ and for β = 8/7, ∫_T^∞ h < ∞, a positive limit.  The claims are those of
   (the extrapolated floor), and the distance keeps returning above 1e-2 (does not converge);
 * β = 7/8: the algebraic envelope of the proof with α8 *estimated*
   (:class:`.theorem2_envelope.AlgebraicEnvelope`, γ = 0.1, δ2 = 0.5), a comparison only: the *proved*
-  α8 (with its own, much smaller γ and region δ2 ≈ 0.2, which this run does not enter by t = 2000) is
+  α8 (valid with its own, much smaller γ, from a start inside its region δ2 ≈ 0.2 only) is
   compared with a run started inside δ2 by ``lkverify constants aleksandrov2017.theorem2``
   (:class:`.theorem2_envelope.ProvedEnvelopeAgainstRun`).
 
