@@ -37,7 +37,6 @@ from __future__ import annotations
 
 import sympy
 
-import dataclasses
 import functools
 
 from lkverify import Status, quad, t
@@ -45,8 +44,8 @@ from lkverify.certify.steps.chain import TermBound, lyapunov_steps
 from lkverify.certify.steps.measures import Region, norm_measure
 from lkverify.certify.matrices import matrix_positive_definite
 from lkverify.certify.steps.rewrites import LowerBound, OnRegion, YoungEach
-from lkverify.certify.steps.rules import (Application, CauchySchwarz, Condition, Equal, Rayleigh, Rule, _abs_factor,
-                                          _cond, _resolve_norm, crossed, mapped, measured)
+from lkverify.certify.steps.rules import (CauchySchwarz, Condition, Equal, ProductCS, Rayleigh, crossed, mapped, measured,
+                                          resolve_norm)
 from lkverify.certify.steps.timevarying import TimeVaryingRate, UpperBound, sup_in_t
 
 from .conditions_h import decide_h_conditions
@@ -97,7 +96,7 @@ DEFINITIONS = {j_min: _eig("J", "min"), j_max: _eig("J", "max"), d_min: _eig("D"
 
 def eta_on_region(ctx) -> Condition:
     """‖η‖ ≤ a1‖s1−r1‖ + a2‖s2−r2‖ ≤ (a1 + a2)δ1 on the region: the norm tree of η (exact) and e_i ≤ δ1."""
-    bound, conds = _resolve_norm(_eta_norm, eta, ctx)
+    bound, conds = resolve_norm(_eta_norm, eta, ctx)
     text = "‖η‖ ≤ a1‖s1−r1‖ + a2‖s2−r2‖ ≤ (a1 + a2)δ1 on the region"
     bad = [c for c in conds if not c.status.is_proof]
     if bound is None or bad:
@@ -114,7 +113,7 @@ def eta_on_region(ctx) -> Condition:
 
 def eta_tree(ctx) -> Condition:
     """‖η‖ ≤ a1‖s1−r1‖ + a2‖s2−r2‖: the norm tree of η (‖s×r‖ = ‖(s−r)×r‖ ≤ ‖s−r‖, triangle), exact."""
-    bound, conds = _resolve_norm(_eta_norm, eta, ctx)
+    bound, conds = resolve_norm(_eta_norm, eta, ctx)
     text = "‖η‖ ≤ a1‖s1−r1‖ + a2‖s2−r2‖ (the norm tree)"
     bad = [c for c in conds if not c.status.is_proof]
     if bound is None or bad or sympy.expand(ctx.at(bound) - ctx.at(a1 * e1 + a2 * e2)) != 0:
@@ -140,41 +139,6 @@ def q_lower(ctx) -> Condition:
     ok = res.status.is_proof and sympy.sympify(dmin) >= 0
     return Condition(f"ωᵀDω ≥ {dmin}‖ω‖² (D − λ_min(D)I ⪰ 0, λ_min(D) ≥ 0)",
                      res.status if ok else Status.FAILED, "" if ok else res.detail)
-
-
-@dataclasses.dataclass(frozen=True)
-class ProductCS(Rule):
-    """|c·(uᵀAv)(xᵀBy)| ≤ |c|·κ_A‖u‖‖v‖·κ_B‖x‖‖y‖: two Cauchy–Schwarz bounds of a product of two bilinear forms.
-
-    ``first`` and ``second`` are :class:`~lkverify.certify.steps.rules.CauchySchwarz` rules (factor 1) for
-    the two forms; the term must be exactly ``factor``·(first form)·(second form) (checked on the state
-    manifold, measures in the factor by their definitions); every side condition of both is kept.
-    """
-
-    first: CauchySchwarz
-    second: CauchySchwarz
-    factor: object = 1
-    name = "Cauchy–Schwarz on each factor of a product of two bilinear forms"
-
-    @staticmethod
-    def _form(cs, ctx):
-        u, v = (sympy.Matrix(ctx.at(sympy.Matrix(x))) for x in (cs.u, cs.v))
-        M = sympy.eye(u.shape[0]) if cs.matrix is None else sympy.Matrix(ctx.at(sympy.Matrix(cs.matrix)))
-        return (u.T * M * v)[0]
-
-    def apply(self, term, direction, ctx):
-        c = ctx.at(self.factor)
-        p1, p2 = self._form(self.first, ctx), self._form(self.second, ctx)
-        conds = [_cond(f"the term is ({self.factor})·(uᵀAv)(xᵀBy)",
-                       ctx.zero(ctx.definitions(c) * p1 * p2 - ctx.at(term)), "it is not")]
-        a1_, a2_ = self.first.apply(p1, "upper", ctx), self.second.apply(p2, "upper", ctx)
-        conds += list(a1_.conditions) + list(a2_.conditions)
-        absc = _abs_factor(c, [m.symbol for m in ctx.measures.values()])
-        if absc is None or a1_.bound is None or a2_.bound is None:
-            conds.append(_cond("|factor| is known and both forms are bounded", None, f"{c}"))
-            return Application(self.name, None, tuple(conds))
-        bound = sympy.expand(absc * a1_.bound * a2_.bound)
-        return Application(self.name, bound if direction == "upper" else -bound, tuple(conds))
 
 
 def _cross_term(sign):

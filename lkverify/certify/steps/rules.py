@@ -66,7 +66,7 @@ def _explicit_time(e) -> bool:
 
 __all__ = ["Application", "CauchySchwarz", "Context", "Equal", "Nonpositive", "Norm", "Printed", "Rayleigh", "Rule",
            "Template", "WindowWeight", "Young", "Homogeneous", "crossed", "integral_of", "mapped", "measured", "nonnegative",
-           "scaled", "summed", "unit", "decided", "sign_of"]
+           "scaled", "summed", "unit", "decided", "sign_of", "ProductCS", "resolve_norm"]
 
 
 #: how a Template rule certifies its supremum (as lkverify.certify.constants.ConstantsTuning's defaults)
@@ -581,8 +581,13 @@ def _max_of(vals):
     return sympy.Max(*vals)
 
 
-def _resolve_norm(nb: Norm, vector, ctx: Context) -> tuple:
-    """(bound, conditions) proving ‖vector‖ ≤ bound by the tree ``nb`` (vector matched exactly)."""
+def resolve_norm(nb: Norm, vector, ctx: Context) -> tuple:
+    """(bound, conditions) proving ‖vector‖ ≤ bound by the norm tree ``nb`` (vector matched exactly).
+
+    What a rule with a norm tree does inside; public for proof modules whose own conditions need a
+    norm bound (a ``LowerBound``/``UpperBound`` check).  ``bound`` is None when the tree does not
+    match; each condition carries its status.
+    """
     conds = []
     vec = sympy.Matrix(ctx.at(sympy.Matrix(vector)))
     if callable(getattr(nb, "resolve", None)):  # a norm bound that resolves itself (steps.memory)
@@ -657,6 +662,9 @@ def _resolve_norm(nb: Norm, vector, ctx: Context) -> tuple:
             return None, conds
         return ctx.at(nb.data[0]) * bi, conds
     return nb.bound, conds
+
+
+_resolve_norm = resolve_norm
 
 
 def _integrand(vec, pointwise, weight, ctx: Context, vector):
@@ -922,6 +930,41 @@ class CauchySchwarz(Rule):
         if bu is None or bv is None:
             return Application(self.name, None, tuple(conds))
         bound = sympy.expand(absc * kappa * bu * bv)
+        return Application(self.name, bound if direction == "upper" else -bound, tuple(conds))
+
+
+@dataclasses.dataclass(frozen=True)
+class ProductCS(Rule):
+    """|c·(uᵀAv)(xᵀBy)| ≤ |c|·κ_A‖u‖‖v‖·κ_B‖x‖‖y‖: two Cauchy–Schwarz bounds of a product of two bilinear forms.
+
+    ``first`` and ``second`` are :class:`~lkverify.certify.steps.rules.CauchySchwarz` rules (factor 1) for
+    the two forms; the term must be exactly ``factor``·(first form)·(second form) (checked on the state
+    manifold, measures in the factor by their definitions); every side condition of both is kept.
+    """
+
+    first: CauchySchwarz
+    second: CauchySchwarz
+    factor: object = 1
+    name = "Cauchy–Schwarz on each factor of a product of two bilinear forms"
+
+    @staticmethod
+    def _form(cs, ctx):
+        u, v = (sympy.Matrix(ctx.at(sympy.Matrix(x))) for x in (cs.u, cs.v))
+        M = sympy.eye(u.shape[0]) if cs.matrix is None else sympy.Matrix(ctx.at(sympy.Matrix(cs.matrix)))
+        return (u.T * M * v)[0]
+
+    def apply(self, term, direction, ctx):
+        c = ctx.at(self.factor)
+        p1, p2 = self._form(self.first, ctx), self._form(self.second, ctx)
+        conds = [_cond(f"the term is ({self.factor})·(uᵀAv)(xᵀBy)",
+                       ctx.zero(ctx.definitions(c) * p1 * p2 - ctx.at(term)), "it is not")]
+        a1_, a2_ = self.first.apply(p1, "upper", ctx), self.second.apply(p2, "upper", ctx)
+        conds += list(a1_.conditions) + list(a2_.conditions)
+        absc = _abs_factor(c, [m.symbol for m in ctx.measures.values()])
+        if absc is None or a1_.bound is None or a2_.bound is None:
+            conds.append(_cond("|factor| is known and both forms are bounded", None, f"{c}"))
+            return Application(self.name, None, tuple(conds))
+        bound = sympy.expand(absc * a1_.bound * a2_.bound)
         return Application(self.name, bound if direction == "upper" else -bound, tuple(conds))
 
 
