@@ -60,7 +60,7 @@ from ...status import Status
 from .chain import Krasovskii
 from .measures import Measure
 from .rewrites import _substitute
-from .rules import Application, Condition, Norm, Rule, _cond, _homogeneous_sup, _integrand, nonnegative
+from .rules import Application, Condition, Norm, Rule, _cond, _integrand, nonnegative, pointwise_constant
 
 __all__ = ["KIND", "Evaluated", "KernelBound", "MemoryHolder", "MemoryKrasovskii", "MemoryMeasure", "MemoryWeight",
            "evaluate_constant_integrals", "memory_integral_of", "memory_measure"]
@@ -270,22 +270,11 @@ class _MemoryNorm(Norm):
         if pb is None or not all(c_.status.is_proof for c_ in conds):
             return None, conds
         ps = [sympy.Symbol(f"x{i + 1}", nonnegative=True) for i in range(len(measures))]
-        B = sympy.sympify(ctx.at(pb)).xreplace({m.pointwise_symbol: p for m, p in zip(measures, ps)})
-        if B.atoms(AppliedUndef):
-            return None, conds + [_cond("the pointwise bound is written in the measures' pointwise norms", False,
-                                        f"got {pb}")]
-        T = sum((p**k for p in ps), sympy.S.Zero)
-        if sympy.expand(B - T) == 0:  # no states left in B: nothing for the constraints to reduce
-            kappa = sympy.S.One
-        elif constant is None:
-            return None, conds + [_cond(f"the pointwise bound is Σ‖v_i(ξ)‖^{k}", False, f"got {B}; name a "
-                                        f"constant= to certify a homogeneous bound")]
-        else:
-            kappa, hconds, info = _homogeneous_sup(B, T, ps, ctx.seconds_left())
-            conds += hconds
-            if kappa is None:
-                return None, conds
-            ctx.certified[constant] = (info["certified"], info)
+        # no states are left in B: compared by expansion (nothing for the constraints to reduce)
+        kappa, kconds = pointwise_constant(pb, measures, ps, k, constant, ctx, lambda e: sympy.expand(e) == 0)
+        conds += kconds
+        if kappa is None:
+            return None, conds
         return kappa * sum((m.symbol for m in measures), sympy.S.Zero), conds
 
 

@@ -683,6 +683,29 @@ def _integrand(vec, pointwise, weight, ctx: Context, vector):
     return (g, lo, hi, pb), conds + pconds
 
 
+def pointwise_constant(pb, measures, ps, k, constant, ctx: Context, same) -> tuple:
+    """(κ, conditions) with B ≤ κ Σ‖v_i(ξ)‖^k for the pointwise bound ``pb`` of an integrand (κ None: not proved).
+
+    ``pb`` is written in the measures' pointwise norms, renamed to ``ps``; B = Σ p_i^k gives κ = 1 when
+    ``same(B − Σ p_i^k)`` holds, otherwise the homogeneous supremum is certified as ``constant`` (recorded
+    in ``ctx.certified``).  Shared by window integrals (:func:`integral_of`) and memory integrals
+    (``steps.memory``).
+    """
+    B = sympy.sympify(ctx.at(pb)).xreplace({m.pointwise_symbol: p for m, p in zip(measures, ps)})
+    if B.atoms(AppliedUndef):
+        return None, [_cond("the pointwise bound is written in the measures' pointwise norms", False, f"got {pb}")]
+    T = sum((p**k for p in ps), sympy.S.Zero)
+    if same(B - T):
+        return sympy.S.One, []
+    if constant is None:
+        return None, [_cond(f"the pointwise bound is Σ‖v_i(ξ)‖^{k}", False, f"got {B}; name a constant= to "
+                            f"certify a homogeneous bound")]
+    kappa, hconds, info = _homogeneous_sup(B, T, ps, ctx.seconds_left())
+    if kappa is not None:
+        ctx.certified[constant] = (info["certified"], info)
+    return kappa, list(hconds)
+
+
 def _resolve_integrals(vec, pointwise, measures, k, weight, constant, ctx: Context, vector):
     """‖∫ g v‖ ≤ max g · κ · Σ M_i for window-integral measures M_i of order k (see :func:`integral_of`)."""
     parsed = _integrand(vec, pointwise, weight, ctx, vector)
@@ -695,22 +718,10 @@ def _resolve_integrals(vec, pointwise, measures, k, weight, constant, ctx: Conte
     for m in measures:
         conds.append(_cond(f"{m.name} is a window integral of order {k}", m.kind == "window_integral"
                            and sympy.simplify(ctx.at(m.power) - k) == 0, f"{m.kind} of order {m.power}"))
-    B = sympy.sympify(ctx.at(pb)).xreplace({m.pointwise_symbol: p for m, p in zip(measures, ps)})
-    if B.atoms(AppliedUndef):
-        return None, conds + [_cond("the pointwise bound is written in the measures' pointwise norms", False,
-                                    f"got {pb}")]
-    T = sum((p**k for p in ps), sympy.S.Zero)
-    if ctx.zero(B - T):
-        kappa = sympy.S.One
-    elif constant is None:
-        return None, conds + [_cond(f"the pointwise bound is Σ‖v_i(ξ)‖^{k}", False, f"got {B}; name a constant= to "
-                                    f"certify a homogeneous bound")]
-    else:
-        kappa, hconds, info = _homogeneous_sup(B, T, ps, ctx.seconds_left())
-        conds += hconds
-        if kappa is None:
-            return None, conds
-        ctx.certified[constant] = (info["certified"], info)
+    kappa, kconds = pointwise_constant(pb, measures, ps, k, constant, ctx, ctx.zero)
+    conds += kconds
+    if kappa is None:
+        return None, conds
     fac, wconds = _window_factor(g, lo, hi, measures[0], k, None, ctx)
     conds += [c for c in wconds if "the integrand's power" not in c.text]
     if fac is None:
@@ -1137,9 +1148,6 @@ class Homogeneous(Rule):
     name = "homogeneity and a certified supremum on the faces of the unit cube (finitely many variables)"
 
     def rewrite(self, previous, ctx) -> Application:
-        from ..bounds import sup_bound
-        from ...options import Budget
-
         xs = [ctx.measure(n).symbol for n in self.variables]
         factor, T = ctx.at(self.factor), ctx.at(self.template)
         g = sympy.simplify(ctx.at(previous) / factor)
@@ -1256,7 +1264,7 @@ class Template(Rule):
 
     def apply(self, term, direction, ctx):
         from ..bounds import sup_bound
-        from ...options import Accuracy, Budget
+        from ...options import Budget
 
         conds = []
         # the region inside the chart
