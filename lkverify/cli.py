@@ -147,6 +147,9 @@ def _build_parser() -> argparse.ArgumentParser:
     k.add_argument("--goal", default=None, help="which trade-off to optimise, for items that offer several "
                    "(aleksandrov2023.theorem3: paper = match d1, d2, d3 and maximise δ̃; region = maximise δ̃)")
     _add_linear(sub)
+    from .sweep.cli import add_parser as _add_sweep
+
+    _add_sweep(sub, quiet=_add_quiet, seconds=_seconds, json_help=JSON_HELP)
     return p
 
 
@@ -275,6 +278,10 @@ def _dispatch(args) -> int:
         return _constants(args)
     if args.command == "linear":
         return _linear(args)
+    if args.command == "sweep":
+        from .sweep.cli import run as _sweep
+
+        return _sweep(args, check_output_path=check_output_path, emit=_emit)
     return 0  # pragma: no cover
 
 

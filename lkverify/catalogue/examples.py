@@ -56,6 +56,9 @@ class Example(Item):
         The figure shows [0, plot_until] (the paper's horizon); claims use the whole run.
     step : StepControl
         Tolerances and step limits of every run.
+    equilibrium : mapping, optional
+        State name → value of the equilibrium the distance measures convergence to (as
+        :func:`lkverify.linear.linearise` takes it); ``lkverify sweep`` linearises there.
 
     Examples
     --------
@@ -78,7 +81,8 @@ class Example(Item):
     def __init__(self, name: str, *, runs: Sequence[Run], t_end: float, series: Sequence[Series],
                  distance: Callable, claims: Sequence = (), title: str = "", ylabel: str = "",
                  envelope: EnvelopeSpec | None = None, samples: int = 4001, logy: bool = False,
-                 step: StepControl = StepControl(), paper: str = "", plot_until: float | None = None):
+                 step: StepControl = StepControl(), paper: str = "", plot_until: float | None = None,
+                 equilibrium: Mapping | None = None):
         if not runs:
             raise InputError(f"example {name}: expected at least one run; pass runs=[Run(label, system, values, "
                              f"history)]")
@@ -98,6 +102,7 @@ class Example(Item):
         self.step = step
         self.paper = paper
         self.plot_until = plot_until
+        self.equilibrium = None if equilibrium is None else dict(equilibrium)
 
     # -- simulation ------------------------------------------------------------------------
     def prepare(self, values: Mapping | None = None, *, t_end: float | None = None,

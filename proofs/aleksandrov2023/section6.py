@@ -16,7 +16,7 @@ from lkverify.simulate.rigidbody import DEFAULT_CONVENTION, inertial_vectors_fro
 from .equations import PAPER, P, system
 
 __all__ = ["R_TARGET", "initial_history", "SECTION6", "FIG7_HISTORY", "DIRECTION_COSINES", "s_minus_r", "distance",
-           "gains", "figure", "caption", "SECTION6_ANGLES", "FIG7_ANGLES", "INITIAL", "FIG1", "FIG4", "FIG6", "PRINTED_15"]
+           "gains", "figure", "EQUILIBRIUM", "caption", "SECTION6_ANGLES", "FIG7_ANGLES", "INITIAL", "FIG1", "FIG4", "FIG6", "PRINTED_15"]
 
 R_TARGET = np.array([float(x) for x in P["r"].default])  # r = (1,1,1)/√3 of section 6
 
@@ -82,8 +82,12 @@ def figure(name, title, values, claims, *, t_end, history=SECTION6, envelope=Non
                          series=DIRECTION_COSINES, distances={"combined": distance, "per-vector": s_minus_r},
                          claims=claims, ylabel="direction cosines", envelope=envelope, samples=samples,
                          plot_until=100, paper=PAPER, caption=caption(number), initial=INITIAL[number],
-                         vectors=[("‖s − r‖", s_minus_r)], targets=list(R_TARGET), envelope_caption=envelope_caption)
+                         vectors=[("‖s − r‖", s_minus_r)], targets=list(R_TARGET), envelope_caption=envelope_caption,
+                         equilibrium=EQUILIBRIUM)
 
+
+#: the target (11): s = r, ω = 0 (the distances measure convergence to it; ``lkverify sweep`` linearises there)
+EQUILIBRIUM = {"s": "r", "omega": [0, 0, 0]}
 
 FIG1 = gains("0.7", a="2", b="2", tau="0.9", mu="1")
 FIG4 = gains("0.2", a="0.6", b="-0.6", tau="0.9", mu="1")

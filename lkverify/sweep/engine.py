@@ -1,0 +1,421 @@
+"""Run a sweep on Dask: chunks of points as tasks, each chunk kept on disk as it finishes.
+
+:func:`sweep` is the entry point of ``lkverify sweep``.  The plan (:mod:`.plan`) is built
+once on the client; the exact checks per point (parameter hypotheses, theorem hypotheses)
+run there too, cached by the values they depend on; the simulations and linear margins run
+on the Dask workers, one task per chunk of ``chunk_size`` points.
+
+* Scheduler: by default a ``distributed.LocalCluster`` with one single-threaded worker
+  process per core; ``scheduler="tcp://host:8786"`` uses an existing cluster;
+  ``scheduler="synchronous"`` runs the chunks in this process, one after the other (no Dask
+  cluster: the serial reference the parallel runs are tested against).
+* Resumable: chunk ``k`` is written to ``OUT.parts/chunk-00000k.parquet`` as soon as it
+  finishes, tagged with the sweep's fingerprint (item, values, grid, horizon, tolerances,
+  chunk size, lkverify version); a rerun of the same sweep reuses the finished chunks and
+  computes only the others.  Chunks are fixed by ``chunk_size``, not by the number of
+  workers, and every point is computed on its own, so the table is the same for any
+  number of workers.
+* Budget: when ``budget`` seconds have passed, unfinished chunks are cancelled; their
+  points are ``undecided`` in the table and the result says the sweep is incomplete (a
+  rerun resumes it).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import json
+import logging
+import math
+import os
+import sys
+import time
+from collections.abc import Callable, Sequence
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import InputError
+from .evaluate import CLASSES, run_chunk
+from .grid import Grid
+from .plan import Plan, PointChecks, build_plan, holds
+
+__all__ = ["SweepOptions", "SweepResult", "sweep", "DEFAULT_CHUNK_SIZE"]
+
+#: points per task: large enough that Dask's per-task overhead (a few ms) stays below 1 % of a chunk
+DEFAULT_CHUNK_SIZE = 64
+
+
+@dataclasses.dataclass(frozen=True)
+class SweepOptions:
+    """Options of :func:`sweep`.
+
+    Attributes
+    ----------
+    t_end : float, optional
+        Horizon of every run (default: the example's).
+    samples : int
+        Output samples per run (the distance is classified on them).
+    rtol, atol : float
+        Step control of every run.
+    level : float
+        A point has converged when its distance stays below ``level`` from some time on.
+    max_steps : int
+        Step budget of one run; a run needing more is ``undecided``.
+    chunk_size : int
+        Points per task.
+    scheduler : str, optional
+        None: a LocalCluster; "synchronous": in this process; else a scheduler address.
+    workers : int, optional
+        Worker processes of the LocalCluster (default: the number of cores).
+    budget : float, optional
+        Seconds for the whole sweep; unfinished chunks are then undecided.
+    fresh : bool
+        Discard finished chunks of an earlier run of this sweep instead of reusing them.
+    """
+
+    t_end: float | None = None
+    samples: int = 1001
+    rtol: float = 1e-8
+    atol: float = 1e-10
+    level: float = 1e-2
+    max_steps: int = 10**6
+    chunk_size: int = DEFAULT_CHUNK_SIZE
+    scheduler: str | None = None
+    workers: int | None = None
+    budget: float | None = None
+    fresh: bool = False
+
+    def __post_init__(self):
+        if not (isinstance(self.chunk_size, int) and self.chunk_size >= 1):
+            raise InputError(f"--chunk-size: expected a whole number ≥ 1, got {self.chunk_size!r}")
+        if self.workers is not None and not (isinstance(self.workers, int) and self.workers >= 1):
+            raise InputError(f"--workers: expected a whole number ≥ 1, got {self.workers!r}")
+        if not (isinstance(self.samples, int) and self.samples >= 11):
+            raise InputError(f"samples: expected a whole number ≥ 11, got {self.samples!r}")
+        if not (0 < self.level < math.inf):
+            raise InputError(f"level: expected a positive number, got {self.level!r}")
+
+
+@dataclasses.dataclass(frozen=True)
+class SweepResult:
+    """The outcome of :func:`sweep`.
+
+    Attributes
+    ----------
+    item : str
+    path : Path
+        The Parquet table (one row per point).
+    table : pyarrow.Table
+    meta : dict
+        The sweep's description (also in the table's metadata, key ``lkverify.sweep``).
+    counts : dict
+        Points per simulated class.
+    complete : bool
+        False when the budget ran out (some points undecided; a rerun resumes).
+    reused : int
+        Chunks taken from an earlier run.
+    seconds : float
+    errors : tuple of str
+        Chunks that failed on a worker (their points are undecided; a rerun retries them).
+    plan : Plan
+        What was swept (the example, its values, the compiled simulation).
+    """
+
+    item: str
+    path: Path
+    table: object
+    meta: dict
+    counts: dict
+    complete: bool
+    reused: int
+    seconds: float
+    errors: tuple = ()
+    plan: object = None
+
+
+def sweep(item, *, grid: Sequence[str] | Grid, sets: Sequence[str] = (), out, options: SweepOptions = SweepOptions(),
+          progress: Callable[[int, int, float], None] | None = None) -> SweepResult:
+    """Sweep ``item`` over ``grid`` and write the table to ``out`` (Parquet).
+
+    Parameters
+    ----------
+    item : str
+        A catalogued example with one run (``aleksandrov2023.fig1``).
+    grid : sequence of str or Grid
+        ``NAME=START:STOP:N`` per axis.
+    sets : sequence of str
+        ``NAME=VALUE`` overrides; a value may use the swept names (``F=diag(h,h,h)``).
+    out : path
+        The table; finished chunks are kept in ``out + ".parts"`` until the table is written.
+    options : SweepOptions
+    progress : callable, optional
+        ``progress(points_done, points_total, seconds)`` after every finished chunk.
+
+    Raises
+    ------
+    InputError
+        Bad item, names, values, grid, output path or scheduler address (nothing computed).
+    """
+    start = time.monotonic()
+    grid = grid if isinstance(grid, Grid) else Grid.parse(grid)
+    out = _output_path(out)
+    plan = build_plan(item, grid=grid, sets=sets, t_end=options.t_end, samples=options.samples, rtol=options.rtol,
+                      atol=options.atol, level=options.level, max_steps=options.max_steps)
+    meta = _meta(plan, options)
+    parts = Path(str(out) + ".parts")
+    chunks = [np.arange(k, min(k + options.chunk_size, grid.size)) for k in range(0, grid.size, options.chunk_size)]
+    done = _finished_chunks(parts, meta["fingerprint"], len(chunks), options.fresh)
+    checks = _exact_columns(plan, grid)
+    todo = [k for k in range(len(chunks)) if k not in done]
+    reported = [sum(len(chunks[k]) for k in done)]
+
+    def finished(k, cols):
+        _write_chunk(parts, k, meta["fingerprint"], chunks[k], cols)
+        done[k] = cols
+        reported[0] += len(chunks[k])
+        if progress:
+            progress(reported[0], grid.size, time.monotonic() - start)
+
+    deadline = None if options.budget is None else start + options.budget
+    reused = len(done)
+    errors: dict = {}
+    if todo:
+        _run(plan, grid, chunks, todo, checks["valid"], options, finished, deadline, errors)
+    complete = len(done) == len(chunks)
+    table = _assemble(plan, grid, chunks, done, checks, meta)
+    _write_table(table, out)
+    if complete:
+        _remove_parts(parts)
+    counts = {c: int(np.sum(np.asarray(table.column("simulated").to_pylist(), dtype=object) == c)) for c in CLASSES}
+    return SweepResult(plan.item, out, table, meta, counts, complete, reused, time.monotonic() - start,
+                       tuple(errors.values()), plan)
+
+
+# -- the exact part (client) -------------------------------------------------------------------
+
+
+def _exact_columns(plan: Plan, grid: Grid) -> dict:
+    """valid / invalid_reason and, per theorem, applies + margins: exact, on the client."""
+    checks = PointChecks(plan)
+    n = grid.size
+    valid = np.zeros(n, dtype=bool)
+    reason = np.empty(n, dtype=object)
+    cols = {}
+    for th in plan.theorems:
+        cols[f"applies:{th.short}"] = np.zeros(n, dtype=bool)
+        for k in range(len(th.hypotheses)):
+            cols[f"margin:{th.short}:{k}"] = np.full(n, np.nan)
+    for i in range(n):
+        values = plan.values_at(grid.point(i))
+        why = checks.validity(values)
+        valid[i], reason[i] = not why, why
+        for th in plan.theorems:
+            res = checks.hypotheses(th, values) if not why else []
+            cols[f"applies:{th.short}"][i] = bool(res) and all(holds(s) for s, _ in res)
+            for k, (_, m) in enumerate(res):
+                cols[f"margin:{th.short}:{k}"][i] = m
+    return {"valid": valid, "invalid_reason": reason, **cols}
+
+
+# -- running the chunks ------------------------------------------------------------------------------
+
+
+def _run(plan, grid, chunks, todo, valid, options, finished, deadline, errors) -> None:
+    sim = plan.simulation
+    if options.scheduler == "synchronous":
+        for k in todo:
+            if deadline is not None and time.monotonic() > deadline:
+                return
+            try:
+                cols = run_chunk(sim, grid.floats(chunks[k]), valid[chunks[k]])
+            except Exception as exc:   # a point the integrator could not take: keep the others
+                errors[k] = f"chunk {k} failed: {type(exc).__name__}: {exc}"
+                continue
+            finished(k, cols)
+        return
+    with _client(options) as client:
+        shipped = client.scatter(sim, broadcast=True)
+        from distributed import as_completed
+
+        futures = {client.submit(run_chunk, shipped, grid.floats(chunks[k]), valid[chunks[k]], pure=False): k
+                   for k in todo}
+        remaining = None if deadline is None else max(0.0, deadline - time.monotonic())
+        try:
+            for fut in as_completed(futures, timeout=remaining):
+                k = futures[fut]
+                if fut.status == "error":
+                    exc = fut.exception()
+                    errors[k] = f"chunk {k} failed on a worker: {type(exc).__name__}: {exc}"
+                    continue
+                finished(k, fut.result())
+        except TimeoutError:
+            client.cancel(list(futures))
+
+
+class _client:
+    """A distributed Client: a LocalCluster of our own, or the given scheduler (InputError if unreachable)."""
+
+    def __init__(self, options: SweepOptions):
+        self.options = options
+        self.cluster = self.client = None
+
+    def __enter__(self):
+        from distributed import Client, LocalCluster
+
+        for name in ("distributed", "distributed.worker", "distributed.scheduler", "distributed.nanny",
+                     "distributed.core", "distributed.http.proxy"):
+            logging.getLogger(name).setLevel(logging.ERROR)
+        address = self.options.scheduler
+        if address is None:
+            n = self.options.workers or os.cpu_count() or 1
+            self.cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None)
+            self.client = Client(self.cluster)
+            return self.client
+        try:
+            self.client = Client(address, timeout="10s")
+        except (OSError, TimeoutError, ValueError) as exc:
+            raise InputError(f"--scheduler {address}: cannot reach a Dask scheduler there ({type(exc).__name__}: "
+                             f"{str(exc).splitlines()[0] if str(exc) else 'no answer'}); expected the address of a "
+                             f"running scheduler such as tcp://127.0.0.1:8786 (start one with `dask scheduler`), or "
+                             f"omit --scheduler for a local cluster") from None
+        return self.client
+
+    def __exit__(self, *exc):
+        if self.client is not None:
+            self.client.close()
+        if self.cluster is not None:
+            self.cluster.close()
+        return False
+
+
+# -- files -------------------------------------------------------------------------------------------
+
+
+def _output_path(out) -> Path:
+    out = Path(out)
+    if out.suffix.lower() != ".parquet":
+        raise InputError(f"--out {out}: expected a file name ending in .parquet, got {out.name!r}")
+    folder = out.parent if str(out.parent) else Path(".")
+    if not folder.is_dir():
+        raise InputError(f"--out {out}: the folder {folder} does not exist; create it or choose another path")
+    if not os.access(folder, os.W_OK) or (out.exists() and not os.access(out, os.W_OK)):
+        raise InputError(f"--out {out}: cannot write there (permission denied); choose a writable path")
+    return out
+
+
+def _meta(plan: Plan, options: SweepOptions) -> dict:
+    from .. import __version__
+
+    sim = plan.simulation
+    meta = {
+        "item": plan.item,
+        "grid": [{"name": a.name, "start": str(a.start), "stop": str(a.stop), "n": a.n} for a in plan.grid.axes],
+        "sets": dict(plan.sets),
+        "fixed": {k: str(v) for k, v in plan.fixed.items()},
+        "t_end": sim.t_end, "samples": len(sim.t_eval), "rtol": sim.rtol, "atol": sim.atol, "level": sim.level,
+        "max_steps": sim.max_steps, "divergence_bound": sim.divergence_bound, "chunk_size": options.chunk_size,
+        "theorems": {th.short: [h.name for h in th.hypotheses] for th in plan.theorems},
+        "linear": "" if sim.linear is not None else plan.linear_note,
+        "simulation": plan.simulation_note or "compiled once, parameters as runtime arguments",
+        "lkverify": __version__,
+    }
+    meta["fingerprint"] = hashlib.sha256(json.dumps(meta, sort_keys=True).encode()).hexdigest()[:16]
+    return meta
+
+
+def _finished_chunks(parts: Path, fingerprint: str, n_chunks: int, fresh: bool) -> dict:
+    import pyarrow.parquet as pq
+
+    done = {}
+    if not parts.is_dir():
+        return done
+    for f in sorted(parts.glob("chunk-*.parquet")):
+        try:
+            tbl = pq.read_table(f)
+            same = (tbl.schema.metadata or {}).get(b"lkverify.fingerprint", b"").decode() == fingerprint
+        except Exception:   # a chunk cut short while being written: recompute it
+            same = False
+            tbl = None
+        if fresh or not same:
+            f.unlink()
+            continue
+        k = int(f.stem.split("-")[1])
+        if k < n_chunks:
+            done[k] = {name: _numpy(tbl.column(name)) for name in tbl.column_names if name != "point"}
+    return done
+
+
+def _numpy(column):
+    import pyarrow as pa
+
+    if pa.types.is_string(column.type):
+        return np.asarray(column.to_pylist(), dtype=object)
+    return column.to_numpy()
+
+
+def _write_chunk(parts: Path, k: int, fingerprint: str, idx, cols) -> None:
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    parts.mkdir(exist_ok=True)
+    data = {"point": np.asarray(idx, dtype=np.int64)}
+    data.update({name: _arrow(v) for name, v in cols.items() if name != "seconds"})
+    tbl = pa.table(data).replace_schema_metadata({b"lkverify.fingerprint": fingerprint.encode()})
+    tmp = parts / f".chunk-{k:06d}.tmp"
+    pq.write_table(tbl, tmp)
+    os.replace(tmp, parts / f"chunk-{k:06d}.parquet")
+
+
+def _arrow(v):
+    import pyarrow as pa
+
+    v = np.asarray(v)
+    return pa.array(v.tolist(), type=pa.string()) if v.dtype == object else pa.array(v)
+
+
+def _assemble(plan, grid, chunks, done, checks, meta):
+    import pyarrow as pa
+
+    n = grid.size
+    sim_cols = {"outcome": np.full(n, "", dtype=object), "simulated": np.full(n, "undecided", dtype=object),
+                "t_to_level": np.full(n, np.nan), "final_distance": np.full(n, np.nan),
+                "max_distance": np.full(n, np.nan), "t_fail": np.full(n, np.nan),
+                "n_steps": np.zeros(n, dtype=np.int64), "linear_abscissa": np.full(n, np.nan),
+                "linear_verdict": np.full(n, "", dtype=object)}
+    for k, cols in done.items():
+        for name, col in sim_cols.items():
+            col[chunks[k]] = np.asarray(cols[name], dtype=col.dtype)
+    not_run = np.ones(n, dtype=bool)
+    for k in done:
+        not_run[chunks[k]] = False
+    sim_cols["outcome"][not_run & checks["valid"]] = "budget"
+    sim_cols["simulated"][~checks["valid"]] = "invalid"
+    floats = grid.floats()
+    data = {"point": np.arange(n, dtype=np.int64)}
+    data.update({name: floats[:, j] for j, name in enumerate(grid.names)})
+    data.update({"valid": checks["valid"], "invalid_reason": checks["invalid_reason"]})
+    data.update({k: v for k, v in checks.items() if k.startswith(("applies:", "margin:"))})
+    data.update(sim_cols)
+    data[f"t_to_{_level(plan.simulation.level)}"] = data.pop("t_to_level")
+    tbl = pa.table({k: _arrow(v) for k, v in data.items()})
+    return tbl.replace_schema_metadata({b"lkverify.sweep": json.dumps(meta).encode()})
+
+
+def _level(level: float) -> str:
+    return f"{level:.0e}".replace("e-0", "e-").replace("e+0", "e")
+
+
+def _write_table(table, out: Path) -> None:
+    import pyarrow.parquet as pq
+
+    tmp = out.with_name(f".{out.name}.tmp")
+    pq.write_table(table, tmp)
+    os.replace(tmp, out)
+
+
+def _remove_parts(parts: Path) -> None:
+    if parts.is_dir():
+        for f in parts.glob("*"):
+            f.unlink()
+        parts.rmdir()

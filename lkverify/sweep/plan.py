@@ -1,0 +1,280 @@
+"""What a sweep computes, built once on the client: the item, its values, the checks per point.
+
+:func:`build_plan` turns ``ITEM --set … --grid …`` into a :class:`Plan`:
+
+* the swept example (a catalogued figure with one run) and its System;
+* the values: the run's, overridden by ``--set``; a ``--set`` value may be a template in the
+  swept names (``F=diag(h,h,h)`` sweeps the matrix F through the scalar h);
+* the exact checks, done on the client (cheap, cached by the values they depend on): the
+  parameters' own hypotheses (F ≻ 0, a ≥ 0, τ > 0: a point outside them is ``invalid``) and
+  the hypotheses of every catalogued theorem on the same System, with their margins;
+* what the workers run (:class:`~lkverify.sweep.evaluate.Simulation`): the system compiled
+  once with the swept names as runtime arguments, the linearisation at the declared
+  equilibrium compiled once, the initial history, the distance to the equilibrium.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+import sympy
+
+from ..declare.parse import parse_assignment, parse_value
+from ..declare.symbols import t as _t
+from ..errors import InputError, UnsupportedInput
+from ..status import Status
+from .evaluate import Simulation
+from .grid import Grid
+
+__all__ = ["Plan", "TheoremChecks", "build_plan", "load_example"]
+
+
+@dataclasses.dataclass(frozen=True)
+class TheoremChecks:
+    """The hypotheses of one catalogued theorem on the swept System."""
+
+    name: str          # qualified name, e.g. aleksandrov2023.theorem3
+    short: str         # theorem3
+    hypotheses: tuple  # Hypothesis-like objects with .name and .evaluate(substitution)
+
+
+@dataclasses.dataclass(frozen=True)
+class Plan:
+    """Everything a sweep needs, resolved and compiled once (see the module docstring)."""
+
+    item: str
+    example: object
+    grid: Grid
+    sets: dict                 # name → text, as given
+    fixed: dict                # name → value (no swept name in it)
+    templates: dict            # name → SymPy value containing swept symbols
+    swept_parameters: tuple    # grid names that are parameters of the system
+    theorems: tuple            # TheoremChecks
+    simulation: Simulation
+    linear_note: str           # why there is no linear margin ("" when there is one)
+    simulation_note: str       # "" for the compiled path, else why each point is compiled on its own
+
+    def values_at(self, point: Mapping) -> dict:
+        """The exact parameter values at a grid point (name → exact value)."""
+        sub = {sympy.Symbol(k): v for k, v in point.items()}
+        out = dict(self.fixed)
+        out.update({k: v.xreplace(sub) for k, v in self.templates.items()})
+        out.update({k: point[k] for k in self.swept_parameters})
+        return out
+
+    @property
+    def parameters(self):
+        return self.example.runs[0].system.parameters
+
+
+def load_example(item: str):
+    """The catalogued example ``item`` (one run), or InputError saying what came instead."""
+    from ..catalogue.examples import Example
+    from ..catalogue.loader import find_items
+
+    found = find_items(item)
+    examples = [x for x in found if isinstance(x, Example)]
+    if len(found) != 1 or not examples:
+        kinds = ", ".join(f"{x.qualified_name} ({type(x).__name__.lower()})" for x in found[:4])
+        raise InputError(f"sweep: expected one example (a numerical figure whose run is simulated), got "
+                         f"{kinds or 'nothing'}; e.g. lkverify sweep aleksandrov2023.fig1 --grid b=-3:3:61")
+    ex = examples[0]
+    if len(ex.runs) != 1:
+        raise InputError(f"sweep: {ex.qualified_name} has {len(ex.runs)} runs "
+                         f"({', '.join(r.label for r in ex.runs)}); expected an example with one run")
+    return ex
+
+
+def build_plan(item, *, grid: Grid, sets: Sequence[str] = (), t_end: float | None = None, samples: int = 1001,
+               rtol: float = 1e-8, atol: float = 1e-10, level: float = 1e-2, max_steps: int = 10**6,
+               divergence_bound: float = 1e6) -> Plan:
+    """Resolve and compile a sweep (see the module docstring).
+
+    Raises
+    ------
+    InputError
+        An unknown item or name, a swept name neither a parameter nor used by a ``--set``
+        template, a fixed value outside the parameter's hypotheses, a bad ``--t-end``.
+    """
+    example = load_example(item) if isinstance(item, str) else item
+    run = example.runs[0]
+    system, P = run.system, run.system.parameters
+    names = grid.names
+    symbols = {n: sympy.Symbol(n) for n in names}
+    given = _parse_sets(sets, symbols, P)
+    templates = {k: v for k, v in given.items() if _free(v) & set(symbols.values())}
+    swept = tuple(n for n in names if n in P.names)
+    _check_names(names, swept, templates, given, P, example)
+    fixed = {**dict(run.values), **{k: v for k, v in given.items() if k not in templates}}
+    for k in swept:
+        fixed.pop(k, None)
+    for k in templates:
+        fixed.pop(k, None)
+    P.resolve(fixed, use_defaults=True)          # fixed values within their parameters' hypotheses
+    t_end = _t_end(example.t_end if t_end is None else t_end)
+    symbolic = {**fixed, **templates, **{k: symbols[k] for k in swept}}
+    simulation, sim_note = _simulation(example, symbolic, names, t_end, samples, rtol, atol, level, max_steps,
+                                       divergence_bound)
+    linear, lin_note = _linear(example, symbolic, names)
+    simulation = dataclasses.replace(simulation, linear=linear)
+    return Plan(example.qualified_name, example, grid, {k: str(v) for k, v in given.items()}, fixed, templates,
+                swept, _theorems(example), simulation, lin_note, sim_note)
+
+
+def _parse_sets(sets, symbols, P) -> dict:
+    out = {}
+    for text in sets:
+        name, value = parse_assignment(text)
+        if name not in P.names:
+            raise InputError(f"--set {name}: no such parameter of the swept system; known: {', '.join(P.names)}")
+        if name in out:
+            raise InputError(f"--set {name}: given twice; expected each parameter once")
+        out[name] = parse_value(value, name=name, variables=symbols, option="--set")
+    return out
+
+
+def _free(v) -> set:
+    return set(getattr(v, "free_symbols", set()))
+
+
+def _check_names(names, swept, templates, given, P, example) -> None:
+    used = set().union(*[{str(s) for s in _free(v)} for v in templates.values()]) if templates else set()
+    for n in names:
+        if n == str(_t):
+            raise InputError(f"--grid {n}: t is the time; expected a parameter name")
+        if n in given and n in swept:
+            raise InputError(f"--grid {n}: {n} is both swept and set with --set; expected one of the two")
+        if n not in swept and n not in used:
+            raise InputError(f"--grid {n}: no parameter {n} in {example.qualified_name}'s system and no --set "
+                             f"template uses it; expected one of {', '.join(P.names)}, or a name in a template "
+                             f"such as --set \"F=diag({n},{n},{n})\"")
+        if n in swept and not isinstance(P.resolve({}, use_defaults=True).get(n, sympy.S.Zero), sympy.Expr):
+            raise InputError(f"--grid {n}: {n} is a matrix or vector parameter; sweep it through a scalar with a "
+                             f"template, e.g. --set \"{n}=diag(h,h,h)\" --grid h=0.1:2:20")
+
+
+def _t_end(value) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"--t-end: expected a positive number, got {value!r}") from None
+    if not np.isfinite(v) or v <= 0:
+        raise InputError(f"--t-end: expected a positive finite number, got {value!r}")
+    return v
+
+
+def _simulation(example, symbolic, names, t_end, samples, rtol, atol, level, max_steps, bound):
+    from ..simulate.family import compile_family
+
+    run = example.runs[0]
+    family, note = None, ""
+    try:
+        family = compile_family(run.system, symbolic, grid=names)
+    except UnsupportedInput as exc:
+        note = f"each point compiled on its own (slow path): {exc}"
+    sim = Simulation(family=family, system=run.system, values=symbolic, names=tuple(names),
+                     history=dict(run.history), t_end=t_end, t_eval=np.linspace(0.0, t_end, int(samples)),
+                     rtol=rtol, atol=atol, divergence_bound=bound, max_steps=max_steps,
+                     distance=example.distance, level=level, linear=None)
+    return sim, note
+
+
+def _linear(example, symbolic, names):
+    equilibrium = getattr(example, "equilibrium", None)
+    if not equilibrium:
+        return None, f"{example.qualified_name} declares no equilibrium to linearise at"
+    from ..linear.family import linear_family
+
+    try:
+        return linear_family(example.runs[0].system, equilibrium, symbolic, grid=names), ""
+    except (InputError, UnsupportedInput) as exc:
+        return None, f"no linear margin: {exc}"
+
+
+def _theorems(example) -> tuple:
+    """Catalogued theorems of the example's paper whose system is the example's System."""
+    from ..catalogue.items import Theorem
+    from ..catalogue.loader import find_items
+
+    system = example.runs[0].system
+    paper = example.qualified_name.split(".")[0]
+    out = []
+    for x in find_items(paper):
+        if isinstance(x, Theorem) and x.system is system and x.hypotheses:
+            out.append(TheoremChecks(x.qualified_name, x.name, tuple(x.hypotheses)))
+    return tuple(out)
+
+
+# -- the exact checks per point (client side) ------------------------------------------------------
+
+
+class PointChecks:
+    """Parameter validity and theorem hypotheses per point, exact, cached by the values they depend on."""
+
+    def __init__(self, plan: Plan):
+        self.plan = plan
+        self.P = plan.parameters
+        self._valid: dict = {}
+        self._hyp: dict = {}
+        depends = {k: {str(s) for s in _free(v)} for k, v in plan.templates.items()}
+        depends.update({k: {k} for k in plan.swept_parameters})
+        self.depends = depends          # parameter → swept names it depends on
+        everything = self.P.resolve(plan.fixed, use_defaults=True)
+        self.base = dict(everything)
+
+    def validity(self, values: Mapping) -> str:
+        """'' when every swept parameter is admissible at these values, else the reason (one line)."""
+        for name in self.depends:
+            key = (name, _key(values[name]))
+            if key not in self._valid:
+                try:
+                    self.P.resolve({name: values[name]}, use_defaults=False)
+                    self._valid[key] = ""
+                except InputError as exc:
+                    self._valid[key] = str(exc)
+            if self._valid[key]:
+                return self._valid[key]
+        return ""
+
+    def hypotheses(self, th: TheoremChecks, values: Mapping) -> list:
+        """[(status, margin float)] of the theorem's hypotheses at the values."""
+        full = {**self.base, **values}
+        sub = None
+        out = []
+        for k, h in enumerate(th.hypotheses):
+            names = _hypothesis_names(h)
+            names = set(self.depends) if "*" in names else names & set(self.depends)
+            key = (th.name, k, tuple((n, _key(full[n])) for n in sorted(names)))
+            if key not in self._hyp:
+                if sub is None:
+                    sub = self.P.substitution(full)
+                res = h.evaluate(sub)
+                self._hyp[key] = (res.status, _float(res.value))
+            out.append(self._hyp[key])
+        return out
+
+
+def _hypothesis_names(h) -> set:
+    names = set()
+    for f in dataclasses.fields(h) if dataclasses.is_dataclass(h) else ():
+        v = getattr(h, f.name)
+        if isinstance(v, sympy.Basic):
+            names |= {str(s) for s in v.free_symbols}
+    return names if names or dataclasses.is_dataclass(h) else {"*"}
+
+
+def _key(v):
+    return sympy.srepr(v) if isinstance(v, sympy.Basic) else repr(v)
+
+
+def _float(v) -> float:
+    try:
+        return float(v)
+    except (TypeError, ValueError):
+        return float("nan")
+
+
+def holds(status: Status) -> bool:
+    return status in (Status.EXACT, Status.CERTIFIED)
