@@ -60,6 +60,7 @@ from collections.abc import Mapping
 from fractions import Fraction
 
 import numpy as np
+import sympy
 
 from ..errors import InputError
 
@@ -283,9 +284,10 @@ class _Fields:
 
 def _title(meta: Mapping, axes: list) -> str:
     item = meta.get("item", "sweep")
+    names = [n for n, _ in axes]
     sets = dict(meta.get("sets") or {})
-    parts = [f"{k} = {v}" for k, v in sets.items()]
-    parts += [f"{k} = {v}" for k, v in (meta.get("fixed") or {}).items() if k not in sets]
+    parts = [f"{k} = {_shown(v, names)}" for k, v in sets.items()]
+    parts += [f"{k} = {_shown(v, names)}" for k, v in (meta.get("fixed") or {}).items() if k not in sets]
     swept = ", ".join(f"{n} ∈ [{v[0]:g}, {v[-1]:g}] ({len(v)})" for n, v in axes)
     line = f"{item}: sweep of {swept}"
     t_end = meta.get("t_end")
@@ -293,6 +295,19 @@ def _title(meta: Mapping, axes: list) -> str:
         line += f", simulated to t = {float(t_end):g}"
     fixed = textwrap.fill(("fixed: " + ", ".join(parts)) if parts else "", 140)
     return line + ("\n" + fixed if fixed else "")
+
+
+def _shown(text, names) -> str:
+    """A value's text as a reader writes it (``Matrix([[h, 0], [0, h]])`` → ``diag(h, h)``), else as given."""
+    from ..declare.parse import parse_value
+    from ..simulate.figures import show_value
+
+    text = str(text).strip()
+    inner = text[len("Matrix("):-1] if text.startswith("Matrix(") and text.endswith(")") else text
+    try:
+        return show_value(parse_value(inner, variables={n: sympy.Symbol(n) for n in names}))
+    except (InputError, TypeError, ValueError):
+        return text
 
 
 def _axis_label(name: str) -> str:

@@ -86,8 +86,17 @@ def test_2d_map_written_with_every_layer(tmp_path, captured):
     assert any(t.startswith("Theorem 1: hypotheses hold nowhere on this grid") for t in texts)
     assert any("linearisation stable" in t and "ticks on the stable side" in t for t in texts)
     assert any("simulation agrees" in t for t in texts) and any("simulation disagrees" in t for t in texts)
-    assert "fixed: F = diag(h,h,h), a = 2, tau = 9/10, mu = 1" in fig.get_suptitle()
+    assert "fixed: F = diag(h, h, h), a = 2, tau = 0.9, mu = 1" in fig.get_suptitle()
     assert "aleksandrov2023.fig1" in fig.get_suptitle() and "t = 100" in fig.get_suptitle()
+
+
+def test_title_shows_values_as_a_reader_writes_them(tmp_path, captured):
+    cols, meta = plane()
+    meta = {**meta, "sets": {"F": "Matrix([[h, 0, 0], [0, h, 0], [0, 0, h]])"}, "fixed": {"a": "2", "F": "x"}}
+    plot_map(pa.table(cols), meta, tmp_path / "map.png", title=None)
+    assert captured[0].get_suptitle().endswith("fixed: F = diag(h, h, h), a = 2")
+    plot_map(pa.table(cols), meta, tmp_path / "map.png", title="my map")
+    assert captured[1].get_suptitle() == "my map"
 
 
 def test_marks_filled_when_the_simulation_agrees(tmp_path, captured):
