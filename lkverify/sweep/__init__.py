@@ -10,7 +10,10 @@ margins (exact, :mod:`.plan`), the linearisation's spectral abscissa (estimated)
 from .engine import DEFAULT_CHUNK_SIZE, SweepOptions, SweepResult, sweep
 from .evaluate import CLASSES, Simulation, classify, run_chunk
 from .grid import Axis, Grid, MAX_POINTS
+from .figure import plot_map
+from .marks import Mark, paper_marks
 from .plan import Plan, build_plan, load_example
 
-__all__ = ["Axis", "CLASSES", "DEFAULT_CHUNK_SIZE", "Grid", "MAX_POINTS", "Plan", "Simulation", "SweepOptions",
-           "SweepResult", "build_plan", "classify", "load_example", "run_chunk", "sweep"]
+__all__ = ["Axis", "CLASSES", "DEFAULT_CHUNK_SIZE", "Grid", "MAX_POINTS", "Mark", "Plan", "Simulation", "SweepOptions",
+           "SweepResult", "build_plan", "classify", "load_example", "paper_marks", "plot_map",
+           "run_chunk", "sweep"]

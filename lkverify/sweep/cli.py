@@ -106,32 +106,46 @@ class _Bar:
 
 
 def _marks(result: SweepResult) -> list:
-    """The paper's gains in the swept plane: (mark description, Mark) with the outcome simulated there."""
+    """The paper's gains in the swept plane: (mark description, Mark) with the outcome simulated there.
+
+    Each mark is simulated at its exact gains over its own figure's horizon (what the figure
+    shows), whatever the sweep's ``--t-end``; the map's class at the nearest grid point is
+    reported beside it.
+    """
+    import dataclasses
+
+    from ..catalogue.loader import find_items
     from .marks import paper_marks
 
     plan = result.plan
-    found = paper_marks(plan.example, plan.grid.names, plan.templates)
+    found = paper_marks(plan.example, plan.grid.names, plan.templates, fixed=plan.fixed,
+                        history=plan.example.runs[0].history)
     out = []
     sim = plan.simulation
     for m in found:
+        horizon = float(find_items(m.item)[0].t_end)
+        own = dataclasses.replace(sim, t_end=horizon, t_eval=np.linspace(0.0, horizon, len(sim.t_eval)))
         pt = np.array([[float(m.coords[n]) for n in plan.grid.names]])
-        cols = run_chunk(sim, pt, np.array([True]))
+        cols = run_chunk(own, pt, np.array([True]))
         observed = str(cols["simulated"][0])
         region = _region_at(result, plan.grid, m.coords)
         out.append(({"label": m.label, "item": m.item, "coords": {k: float(v) for k, v in m.coords.items()},
                      "exact": {k: str(v) for k, v in m.coords.items()}, "expected": m.expected,
-                     "observed": observed, "region": region,
+                     "observed": observed, "region": region, "t_end": horizon,
                      "t_to_level": float(cols["t_to_level"][0]),
                      "final_distance": float(cols["final_distance"][0])}, m))
     return out
 
 
 def _region_at(result: SweepResult, grid, coords) -> str:
-    """The simulated class of the grid point nearest to ``coords`` (in grid steps)."""
+    """The simulated class of the grid point nearest to ``coords``, or "outside the grid"."""
     idx = []
     for a in grid.axes:
         x = float(coords[a.name])
         vals = np.array([float(v) for v in a.values])
+        half = 0.5 * (abs(vals[-1] - vals[0]) / (a.n - 1) if a.n > 1 else 0.0)
+        if x < vals.min() - half - 1e-12 or x > vals.max() + half + 1e-12:
+            return "outside the grid"
         idx.append(int(np.argmin(np.abs(vals - x))))
     k = int(np.ravel_multi_index(tuple(idx), grid.shape))
     return str(result.table.column("simulated")[k].as_py())
@@ -183,8 +197,9 @@ def _report(result: SweepResult, marks, plot: str, figure_note: str) -> Report:
         at = ", ".join(f"{k} = {v}" for k, v in m["exact"].items())
         status = Status.SIMULATED if ok or ok is None else Status.FAILED
         results.append(Result("simulation", f"{m['label']} ({at})", status, m["observed"],
-                              f"simulated {m['observed']} at the paper's gains; the figure: {m['expected'] or '—'}"
-                              f"; the map's nearest point: {m['region']}"))
+                              f"simulated {m['observed']} at the paper's gains to t = {m['t_end']:g} (the figure's "
+                              f"horizon); the figure: {m['expected'] or '—'}; the map at t = {meta['t_end']:g}, "
+                              f"nearest point: {m['region']}"))
     where = f"table {result.path} ({n} rows)" + ("" if figure_note else f", map {plot}")
     verdict = (f"{'complete' if result.complete else 'incomplete'}: {where}; {result.seconds:.1f} s"
                + (f"; {figure_note}" if figure_note else ""))

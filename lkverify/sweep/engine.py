@@ -120,6 +120,10 @@ class SweepResult:
         Chunks that failed on a worker (their points are undecided; a rerun retries them).
     plan : Plan
         What was swept (the example, its values, the compiled simulation).
+    timings : dict
+        Seconds spent building the plan (SymPy, once), on the exact checks, and running the chunks
+        (``simulation``: cluster start, compilation on the workers and the simulations; ``cluster
+        start`` alone).
     """
 
     item: str
@@ -132,6 +136,7 @@ class SweepResult:
     seconds: float
     errors: tuple = ()
     plan: object = None
+    timings: dict = dataclasses.field(default_factory=dict)
 
 
 def sweep(item, *, grid: Sequence[str] | Grid, sets: Sequence[str] = (), out, options: SweepOptions = SweepOptions(),
@@ -162,11 +167,14 @@ def sweep(item, *, grid: Sequence[str] | Grid, sets: Sequence[str] = (), out, op
     out = _output_path(out)
     plan = build_plan(item, grid=grid, sets=sets, t_end=options.t_end, samples=options.samples, rtol=options.rtol,
                       atol=options.atol, level=options.level, max_steps=options.max_steps)
+    timings = {"plan": time.monotonic() - start}
     meta = _meta(plan, options)
     parts = Path(str(out) + ".parts")
     chunks = [np.arange(k, min(k + options.chunk_size, grid.size)) for k in range(0, grid.size, options.chunk_size)]
     done = _finished_chunks(parts, meta["fingerprint"], len(chunks), options.fresh)
+    mark = time.monotonic()
     checks = _exact_columns(plan, grid)
+    timings["exact checks"] = time.monotonic() - mark
     todo = [k for k in range(len(chunks)) if k not in done]
     reported = [sum(len(chunks[k]) for k in done)]
 
@@ -180,8 +188,10 @@ def sweep(item, *, grid: Sequence[str] | Grid, sets: Sequence[str] = (), out, op
     deadline = None if options.budget is None else start + options.budget
     reused = len(done)
     errors: dict = {}
+    mark = time.monotonic()
     if todo:
-        _run(plan, grid, chunks, todo, checks["valid"], options, finished, deadline, errors)
+        _run(plan, grid, chunks, todo, checks["valid"], options, finished, deadline, errors, timings)
+    timings["simulation"] = time.monotonic() - mark
     complete = len(done) == len(chunks)
     table = _assemble(plan, grid, chunks, done, checks, meta)
     _write_table(table, out)
@@ -189,7 +199,7 @@ def sweep(item, *, grid: Sequence[str] | Grid, sets: Sequence[str] = (), out, op
         _remove_parts(parts)
     counts = {c: int(np.sum(np.asarray(table.column("simulated").to_pylist(), dtype=object) == c)) for c in CLASSES}
     return SweepResult(plan.item, out, table, meta, counts, complete, reused, time.monotonic() - start,
-                       tuple(errors.values()), plan)
+                       tuple(errors.values()), plan, timings)
 
 
 # -- the exact part (client) -------------------------------------------------------------------
@@ -221,7 +231,7 @@ def _exact_columns(plan: Plan, grid: Grid) -> dict:
 # -- running the chunks ------------------------------------------------------------------------------
 
 
-def _run(plan, grid, chunks, todo, valid, options, finished, deadline, errors) -> None:
+def _run(plan, grid, chunks, todo, valid, options, finished, deadline, errors, timings) -> None:
     sim = plan.simulation
     if options.scheduler == "synchronous":
         for k in todo:
@@ -234,7 +244,9 @@ def _run(plan, grid, chunks, todo, valid, options, finished, deadline, errors) -
                 continue
             finished(k, cols)
         return
+    mark = time.monotonic()
     with _client(options) as client:
+        timings["cluster start"] = time.monotonic() - mark
         shipped = client.scatter(sim, broadcast=True)
         from distributed import as_completed
 

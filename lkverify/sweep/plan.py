@@ -47,7 +47,7 @@ class Plan:
     item: str
     example: object
     grid: Grid
-    sets: dict                 # name → text, as given
+    sets: dict                 # name → text, as typed
     fixed: dict                # name → value (no swept name in it)
     templates: dict            # name → SymPy value containing swept symbols
     swept_parameters: tuple    # grid names that are parameters of the system
@@ -103,7 +103,7 @@ def build_plan(item, *, grid: Grid, sets: Sequence[str] = (), t_end: float | Non
     system, P = run.system, run.system.parameters
     names = grid.names
     symbols = {n: sympy.Symbol(n) for n in names}
-    given = _parse_sets(sets, symbols, P)
+    given, texts = _parse_sets(sets, symbols, P)
     templates = {k: v for k, v in given.items() if _free(v) & set(symbols.values())}
     swept = tuple(n for n in names if n in P.names)
     _check_names(names, swept, templates, given, P, example)
@@ -112,19 +112,20 @@ def build_plan(item, *, grid: Grid, sets: Sequence[str] = (), t_end: float | Non
         fixed.pop(k, None)
     for k in templates:
         fixed.pop(k, None)
-    P.resolve(fixed, use_defaults=True)          # fixed values within their parameters' hypotheses
+    fixed = dict(P.resolve(fixed, use_defaults=False))   # exact, within their parameters' hypotheses
     t_end = _t_end(example.t_end if t_end is None else t_end)
     symbolic = {**fixed, **templates, **{k: symbols[k] for k in swept}}
     simulation, sim_note = _simulation(example, symbolic, names, t_end, samples, rtol, atol, level, max_steps,
                                        divergence_bound)
     linear, lin_note = _linear(example, symbolic, names)
     simulation = dataclasses.replace(simulation, linear=linear)
-    return Plan(example.qualified_name, example, grid, {k: str(v) for k, v in given.items()}, fixed, templates,
+    return Plan(example.qualified_name, example, grid, texts, fixed, templates,
                 swept, _theorems(example), simulation, lin_note, sim_note)
 
 
-def _parse_sets(sets, symbols, P) -> dict:
-    out = {}
+def _parse_sets(sets, symbols, P) -> tuple:
+    """(name → parsed value, name → the text as typed)."""
+    out, texts = {}, {}
     for text in sets:
         name, value = parse_assignment(text)
         if name not in P.names:
@@ -132,7 +133,8 @@ def _parse_sets(sets, symbols, P) -> dict:
         if name in out:
             raise InputError(f"--set {name}: given twice; expected each parameter once")
         out[name] = parse_value(value, name=name, variables=symbols, option="--set")
-    return out
+        texts[name] = value
+    return out, texts
 
 
 def _free(v) -> set:
@@ -199,9 +201,15 @@ def _theorems(example) -> tuple:
     from ..catalogue.loader import find_items
 
     system = example.runs[0].system
-    paper = example.qualified_name.split(".")[0]
+    paper = getattr(example, "paper", "")
+    if not paper:
+        return ()
+    try:
+        items = find_items(paper)
+    except InputError:            # not a catalogued paper (a user's example)
+        return ()
     out = []
-    for x in find_items(paper):
+    for x in items:
         if isinstance(x, Theorem) and x.system is system and x.hypotheses:
             out.append(TheoremChecks(x.qualified_name, x.name, tuple(x.hypotheses)))
     return tuple(out)

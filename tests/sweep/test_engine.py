@@ -1,0 +1,171 @@
+"""The sweep engine on a toy delay equation with a closed-form stability boundary.
+
+x'(t) = −a x(t − τ) is asymptotically stable iff 0 < aτ < π/2; the sweep must find
+converged points below the boundary and not above it, give the same table serially and
+on a two-worker LocalCluster, resume from finished chunks, and report bad input and
+troubled points clearly.
+"""
+
+import math
+import sys
+
+import cloudpickle
+import numpy as np
+import pyarrow.parquet as pq
+import pytest
+
+from lkverify import Equation, InputError, Parameters, Series, System, Term, Vector, t
+from lkverify.catalogue.examples import Example
+from lkverify.simulate import Run
+from lkverify.sweep import Grid, SweepOptions, build_plan, classify, sweep
+from lkverify.sweep import engine as engine_module
+from lkverify.simulate.solver import Outcome
+
+cloudpickle.register_pickle_by_value(sys.modules[__name__])   # Dask workers need the toy's distance by value
+
+
+def distance(states):
+    return np.abs(states["x"][:, 0])
+
+
+def toy(t_end=40.0):
+    P = Parameters()
+    a = P.scalar("a", positive=True, default=1)
+    tau = P.delay("tau", default=1)
+    x = Vector("x", 1)
+    system = System([Equation(x, [Term(-a * x(t - tau)[0])])], parameters=P, name="toy")
+    return Example("user.toy", runs=[Run("x ≡ 1", system, {"a": "1/2"}, {"x": [1]})], t_end=t_end,
+                   series=[Series("x", lambda S: S["x"][:, 0])], distance=distance, equilibrium={"x": [0]})
+
+
+SERIAL = SweepOptions(scheduler="synchronous", chunk_size=3)
+
+
+def columns(table, names):
+    """Column values with NaN written as the string 'nan' (NaN != NaN would hide equal tables)."""
+    def same(v):
+        return "nan" if isinstance(v, float) and math.isnan(v) else v
+    return {n: [same(v) for v in table.column(n).to_pylist()] for n in names}
+
+
+@pytest.fixture(scope="module")
+def serial(tmp_path_factory):
+    out = tmp_path_factory.mktemp("serial") / "toy.parquet"
+    return sweep(toy(), grid=["a=0.25:2.5:10"], out=out, options=SERIAL)
+
+
+def test_boundary_a_tau_pi_over_2(serial):
+    a = np.array(serial.table.column("a").to_pylist())
+    cls = np.array(serial.table.column("simulated").to_pylist())
+    assert serial.complete and serial.table.num_rows == 10
+    assert set(cls[a < 1.2]) == {"converged"}           # well inside aτ < π/2
+    assert "converged" not in set(cls[a > math.pi / 2])   # outside: oscillations grow
+    assert set(cls[a > 2.0]) <= {"diverged", "bounded"}
+
+
+def test_table_on_disk_has_meta_and_rows(serial):
+    tbl = pq.read_table(serial.path)
+    assert tbl.num_rows == 10 and b"lkverify.sweep" in tbl.schema.metadata
+    assert not (serial.path.parent / (serial.path.name + ".parts")).exists()     # parts removed when complete
+    t_conv = np.array(tbl.column("t_to_1e-2").to_pylist(), dtype=float)
+    a = np.array(tbl.column("a").to_pylist())
+    # the slowest of the converged points converges last
+    conv = np.isfinite(t_conv)
+    assert conv.any() and t_conv[conv][np.argmax(a[conv])] == np.nanmax(t_conv)
+
+
+def test_linear_margin_matches_the_closed_form(serial):
+    a = np.array(serial.table.column("a").to_pylist())
+    verdict = np.array(serial.table.column("linear_verdict").to_pylist())
+    assert set(verdict[a < math.pi / 2 - 0.1]) == {"stable"}
+    assert set(verdict[a > math.pi / 2 + 0.1]) == {"unstable"}
+
+
+def test_two_worker_local_cluster_equals_serial(serial, tmp_path):
+    par = sweep(toy(), grid=["a=0.25:2.5:10"], out=tmp_path / "par.parquet",
+                options=SweepOptions(workers=2, chunk_size=3))
+    names = [n for n in serial.table.column_names]
+    assert par.complete
+    assert columns(par.table, names) == columns(serial.table, names)
+
+
+def test_resume_reuses_finished_chunks(tmp_path, monkeypatch):
+    real = engine_module.run_chunk
+    calls = []
+
+    def flaky(sim, points, valid):
+        calls.append(len(points))
+        if len(calls) == 2:
+            raise RuntimeError("worker lost")
+        return real(sim, points, valid)
+
+    out = tmp_path / "resume.parquet"
+    monkeypatch.setattr(engine_module, "run_chunk", flaky)
+    first = sweep(toy(), grid=["a=0.25:2.5:10"], out=out, options=SERIAL)
+    assert not first.complete and len(first.errors) == 1
+    assert "undecided" in first.table.column("simulated").to_pylist()
+    assert (tmp_path / "resume.parquet.parts").is_dir()
+    monkeypatch.setattr(engine_module, "run_chunk", real)
+    second = sweep(toy(), grid=["a=0.25:2.5:10"], out=out, options=SERIAL)
+    assert second.complete and second.reused == 3                    # 4 chunks of ≤ 3 points, one recomputed
+    fresh = sweep(toy(), grid=["a=0.25:2.5:10"], out=tmp_path / "fresh.parquet", options=SERIAL)
+    names = fresh.table.column_names
+    assert columns(second.table, names) == columns(fresh.table, names)
+
+
+def test_invalid_and_troubled_points_get_a_status(tmp_path):
+    # a ≥ 0 is the parameter's hypothesis (positive): a = 0 is invalid, not simulated
+    res = sweep(toy(), grid=["a=0:4:3"], out=tmp_path / "s.parquet", options=SERIAL)
+    cls = res.table.column("simulated").to_pylist()
+    reason = res.table.column("invalid_reason").to_pylist()
+    assert cls[0] == "invalid" and "a" in reason[0] and cls[2] == "diverged"
+    tiny = sweep(toy(), grid=["a=0.5:1:2"], out=tmp_path / "b.parquet",
+                 options=SweepOptions(scheduler="synchronous", max_steps=5))
+    assert set(tiny.table.column("simulated").to_pylist()) == {"undecided"}
+    assert set(tiny.table.column("outcome").to_pylist()) == {"budget"}
+
+
+def test_swept_delay(tmp_path):
+    res = sweep(toy(), grid=["tau=0.5:2.5:3"], sets=["a=1"], out=tmp_path / "tau.parquet", options=SERIAL)
+    cls = res.table.column("simulated").to_pylist()
+    assert cls[0] == "converged" and cls[2] in ("bounded", "diverged")         # aτ = 0.5 vs 2.5
+
+
+@pytest.mark.parametrize("grid, sets, message", [
+    (["q=0:1:3"], [], "no parameter q"),
+    (["a=0:1:0"], [], "zero points"),
+    (["a=0:1:x"], [], "whole number"),
+    (["a=0:1:3", "a=1:2:3"], [], "swept twice"),
+    (["a=0:1:3"], ["a=2"], "both swept and set"),
+    (["a=0:1:3"], ["zz=1"], "no such parameter"),
+])
+def test_bad_input(tmp_path, grid, sets, message):
+    with pytest.raises(InputError, match=message):
+        sweep(toy(), grid=grid, sets=sets, out=tmp_path / "x.parquet", options=SERIAL)
+
+
+def test_bad_output_path_and_scheduler(tmp_path):
+    with pytest.raises(InputError, match="does not exist"):
+        sweep(toy(), grid=["a=0:1:3"], out=tmp_path / "no" / "x.parquet", options=SERIAL)
+    with pytest.raises(InputError, match="ending in .parquet"):
+        sweep(toy(), grid=["a=0:1:3"], out=tmp_path / "x.csv", options=SERIAL)
+    with pytest.raises(InputError, match="cannot reach a Dask scheduler"):
+        sweep(toy(), grid=["a=0.5:1:2"], out=tmp_path / "x.parquet",
+              options=SweepOptions(scheduler="tcp://127.0.0.1:9", chunk_size=2))
+
+
+def test_classify_levels():
+    tt = np.linspace(0.0, 10.0, 101)
+    assert classify(Outcome.SUCCESS, tt, 0.02 * np.exp(-tt), 1e-2)[1] == pytest.approx(0.7, abs=0.05)
+    assert classify(Outcome.BUDGET, tt, np.zeros(101), 1e-2)[0] == "undecided"
+    assert classify(Outcome.STEP_COLLAPSE, tt, np.zeros(101), 1e-2)[0] == "undecided"
+    # converges then leaves again: not converged
+    d = np.where(tt < 9.5, 1e-3, 1.0)
+    assert classify(Outcome.SUCCESS, tt, d, 1e-2)[0] == "bounded"
+
+
+def test_plan_values_at_substitutes_templates():
+    grid = Grid.parse(["b=-1:1:3"])
+    plan = build_plan(toy(), grid=Grid.parse(["a=1:2:2"]), sets=[])
+    assert plan.values_at({"a": 2})["a"] == 2 and plan.swept_parameters == ("a",)
+    assert grid.size == 3
