@@ -47,6 +47,18 @@ What is measured
      SymPy-heavy code, so compare the percentages with the unprofiled table) and the
      top functions by own time.
 
+5. The fast path (``lkverify fast``): :func:`lkverify.simulate.family.compile_family` with
+   the case's gains as runtime parameters (FAST_GRID; fig1 sweeps b and h through
+   F = diag(h,h,h), as ``lkverify sweep`` does), integrated by the numba DOPRI5 of
+   :mod:`lkverify.simulate.batch`.  ``setup`` = ``compile_family`` (SymPy: substitution, CSE,
+   source), ``compile`` = numba compilation of the generated rhs in this process (the
+   integrator kernel itself is compiled once per machine and loaded from numba's disk
+   cache; a cold kernel compile is printed when it happens), ``integrate`` =
+   ``CompiledFamily.integrate`` of the one point, wall clock, warm, best of --repeat
+   (includes the per-point preparation: lags, breakpoints, initial state).  Tuned on the
+   same ladder and error rule.  Its window auxiliaries are not re-synchronised.  The
+   per-point time in a batch of 100 copies of the point is printed as well.
+
 Translation notes: the rhs uses only +, *, integer powers, ``sqrt`` of constants and
 ``(...)**(3/10)``, which symengine prints as C ``sqrt``/``pow``.  jitcdde's ``min_step``
 is lowered to 1e-16 (see MIN_STEP).  ``compile_C`` runs in an empty directory, because
@@ -84,8 +96,16 @@ import sympy
 
 from lkverify.catalogue.loader import find_items
 from lkverify.simulate import StepControl, compile_system, simulate
+from lkverify.simulate.family import compile_family
 
 CASES = [("aleksandrov2023.fig1", 0), ("aleksandrov2026.example", 0)]
+# the fast path's runtime parameters per case: (grid names, templates replacing values, template name → the
+# parameter entry giving its value at the case's point)
+FAST_GRID = {
+    "aleksandrov2023.fig1": (("b", "h"), {"F": "diag(h,h,h)"}, {"h": ("F", 0, 0)}),
+    "aleksandrov2026.example": (("alpha1", "alpha2"), {}, {}),
+}
+BATCH = 100
 N_GRID = 2001
 TARGET = 1e-6
 REF = (1e-12, 1e-14)
@@ -176,6 +196,40 @@ def run_lkverify(case: Case, grid, rtol, atol):
     if tr.outcome.value != "success" or len(tr.t) != len(grid):
         raise RuntimeError(f"lkverify on {case.name} at rtol={rtol:g}: {tr.outcome.value} {tr.message}")
     return state_matrix(tr, case.comp.layout), total, tr.seconds
+
+
+# -- lkverify fast path (compiled family, numba) ---------------------------------
+
+def build_fast(case: Case):
+    """(family, its point, setup s, numba compile s, kernel load s): compile_family, then the first compile."""
+    names, templates, entries = FAST_GRID[case.name]
+    resolved = case.run.system.parameters.resolve(case.run.values, use_defaults=True)
+    h = {n: sympy.Symbol(n) for n in names}
+    point = [float(resolved[entries[n][0]][entries[n][1], entries[n][2]]) if n in entries else float(resolved[n])
+             for n in names]
+    values = {k: v for k, v in case.run.values.items() if k not in names and k not in templates}
+    values.update({k: sympy.sympify(v, locals={**h, "diag": sympy.diag}) for k, v in templates.items()})
+    start = time.perf_counter()
+    import lkverify.simulate.batch  # noqa: F401 - the kernel: from numba's disk cache, or compiled once (cold)
+    kernel = time.perf_counter() - start
+    start = time.perf_counter()
+    fam = compile_family(case.run.system, values, grid=names)
+    setup = time.perf_counter() - start
+    start = time.perf_counter()
+    fam.functions()
+    compile_s = time.perf_counter() - start
+    return fam, np.array(point, dtype=float), setup, compile_s, kernel
+
+
+def run_fast(fam, point, case: Case, grid, rtol, atol, copies: int = 1):
+    """(states of the first copy on grid, wall seconds of integrate, BatchResult)."""
+    pts = np.repeat(point[None, :], copies, axis=0)
+    start = time.perf_counter()
+    res = fam.integrate(pts, case.run.history, t_end=float(grid[-1]), t_eval=grid, rtol=rtol, atol=atol)
+    seconds = time.perf_counter() - start
+    if res.outcomes[0].value != "success":
+        raise RuntimeError(f"fast path on {case.name} at rtol={rtol:g}: {res.outcomes[0].value}")
+    return res.y[0], seconds, res
 
 
 # -- jitcdde ------------------------------------------------------------------
@@ -341,7 +395,7 @@ def count_jitcdde_steps(dde, case: Case, grid, rtol, atol) -> int:
     return attempts
 
 
-def bench_case(case: Case, grid, repeat: int, force_profile: bool) -> tuple[Timing, Timing, str | None]:
+def bench_case(case: Case, grid, repeat: int, force_profile: bool) -> tuple:
     """Reference, cross-checks, tuning and timing of one case; prints as it goes."""
     print(f"\n== {case.name}: {case.label}  (n = {case.comp.n_states} states + {case.comp.n - case.comp.n_states} "
           f"auxiliaries, lags {case.comp.lags})")
@@ -359,9 +413,14 @@ def bench_case(case: Case, grid, repeat: int, force_profile: bool) -> tuple[Timi
     print(f"  cross-check: jitcdde rtol={JIT_TIGHTEST[0]:.0e} atol={JIT_TIGHTEST[1]:.0e} vs reference: "
           f"{max_error(tight, ref):.2e}  ({tight_s:.1f} s)")
 
+    fam, point, fast_setup, fast_compile, kernel = build_fast(case)
+    print(f"  fast path: grid {fam.grid} at {point.tolist()}; compile_family {fast_setup:.3f} s, numba rhs "
+          f"{fast_compile:.3f} s, integrator kernel import {kernel:.3f} s"
+          f"{' (cold compile: first run on this machine)' if kernel > 5 else ' (numba disk cache)'}")
     lk_set, lk_err, lk_scan = tune(lambda r, a: run_lkverify(case, grid, r, a)[0], ref, "lkverify")
     jit_set, jit_err, jit_scan = tune(lambda r, a: run_jitcdde(dde, case, grid, r, a)[0], ref, "jitcdde")
-    for tool, scan in (("lkverify", lk_scan), ("jitcdde", jit_scan)):
+    fast_set, fast_err, fast_scan = tune(lambda r, a: run_fast(fam, point, case, grid, r, a)[0], ref, "fast")
+    for tool, scan in (("lkverify", lk_scan), ("jitcdde", jit_scan), ("fast", fast_scan)):
         for ratio in ATOL_RATIOS:
             rungs = [f"{r:.0e}:{e:.1e}" for (r, a), e in scan if a == r * ratio]
             print(f"  scan {tool:8s} atol=rtol*{ratio:g}  rtol:error  {'  '.join(rungs)}")
@@ -371,17 +430,27 @@ def bench_case(case: Case, grid, repeat: int, force_profile: bool) -> tuple[Timi
     lk_int = min(r[2] for r in lk_runs)
     jit_int = min(run_jitcdde(dde, case, grid, *jit_set)[1] for _ in range(repeat))
     tr = simulate(case.run.system, history=case.run.history, t_end=float(grid[-1]), values=case.run.values,
-                  rtol=lk_set[0], atol=lk_set[1], t_eval=grid)
+                  step=StepControl(rtol=lk_set[0], atol=lk_set[1]), t_eval=grid)
+    fast_runs = [run_fast(fam, point, case, grid, *fast_set) for _ in range(repeat)]
+    fast_int = min(r[1] for r in fast_runs)
+    fres = fast_runs[0][2]
+    batch = min(run_fast(fam, point, case, grid, *fast_set, copies=BATCH)[1] for _ in range(repeat))
     attempts = count_jitcdde_steps(dde, case, grid, *jit_set)
     print(f"  work at the chosen settings: lkverify {tr.n_steps} steps, {tr.nfev} rhs evaluations "
           f"({1e6 * lk_int / tr.nfev:.1f} µs each, integration time / evaluations); "
           f"jitcdde {attempts} step attempts ({1e6 * jit_int / attempts:.1f} µs each)")
+    print(f"  fast path at its setting: {int(fres.n_steps[0])} steps ({int(fres.n_rejected[0])} rejected), "
+          f"{int(fres.nfev[0])} rhs evaluations ({1e9 * fast_int / fres.nfev[0]:.0f} ns each, integrate / "
+          f"evaluations); batch of {BATCH} copies: {1e3 * batch / BATCH:.3f} ms per point "
+          f"(single point {1e3 * fast_int:.3f} ms)")
+    fast = Timing("fast", *fast_set, fast_err, fast_setup, fast_compile, fast_int,
+                  fast_setup + fast_compile + fast_int)
     lk = Timing("lkverify", *lk_set, lk_err, lk_total - lk_int, None, lk_int, lk_total)
     jit = Timing("jitcdde", *jit_set, jit_err, setup_j, compile_j, jit_int, setup_j + compile_j + jit_int)
     profile = None
     if force_profile or lk.total > jit.total or lk.integrate > jit.integrate:
         profile = profile_simulate(case, grid, *lk_set)
-    return lk, jit, profile
+    return lk, jit, fast, batch / BATCH, profile
 
 
 def main() -> None:
@@ -403,15 +472,20 @@ def main() -> None:
 
     print(f"\n{'case':24s} {'tool':9s} {'rtol':>7s} {'atol':>7s} {'max err':>9s} {'setup s':>8s} "
           f"{'compile s':>9s} {'integr s':>9s} {'total s':>8s}")
-    for name, (lk, jit, _) in rows.items():
-        for r in (lk, jit):
+    for name, (lk, jit, fast, _, _) in rows.items():
+        for r in (lk, jit, fast):
             compile_s = f"{r.compile:9.3f}" if r.compile is not None else f"{'-':>9s}"
             print(f"{name:24s} {r.tool:9s} {r.rtol:7.0e} {r.atol:7.0e} {r.error:9.2e} {r.setup:8.3f} "
-                  f"{compile_s} {r.integrate:9.3f} {r.total:8.3f}")
+                  f"{compile_s} {r.integrate:9.4f} {r.total:8.3f}")
     print("\nratio lkverify / jitcdde (same run; target total <= 1.0):")
-    for name, (lk, jit, _) in rows.items():
+    for name, (lk, jit, _, _, _) in rows.items():
         print(f"  {name:24s} total {lk.total / jit.total:6.2f}   integration {lk.integrate / jit.integrate:6.2f}")
-    for name, (lk, _, profile) in rows.items():
+    print("\nratio fast path / jitcdde (same run; target integration <= 1.0):")
+    for name, (_, jit, fast, per_point, _) in rows.items():
+        print(f"  {name:24s} total {fast.total / jit.total:6.2f}   integration {fast.integrate / jit.integrate:6.2f}"
+              f"   per point in a batch of {BATCH}: {1e3 * per_point:.3f} ms ({per_point / jit.integrate:.2f} "
+              f"of jitcdde's integration)")
+    for name, (lk, _, _, _, profile) in rows.items():
         if profile:
             print(f"\nprofile of lkverify simulate, {name} at rtol={lk.rtol:.0e} atol={lk.atol:.0e}:")
             print(profile)

@@ -41,6 +41,7 @@ system of paper 000 (``benchmarks/bench_jitcdde.py``).
 from __future__ import annotations
 
 import dataclasses
+import math
 from collections.abc import Callable, Mapping
 
 import numpy as np
@@ -235,13 +236,54 @@ def compile_system(system: System, values: Mapping[str, object] | None = None, *
     if integrals not in ("auto", "quadrature"):
         raise InputError(f"integrals: expected 'auto' or 'quadrature', got {integrals!r}")
     name = system.name or "system"
+    rhs = _resolved_rhs(system, values, name)
+    sr = _symbolic_rhs(system, rhs, integrals, name)
+    n = sr.n_states
+    lags = tuple(float(c) for c in sr.exact_lags)
+    args = [t, *sr.ysyms, *sr.aux_syms, *[z for row in sr.zsyms for z in row], *sr.quad_holders.values()]
+    f = sympy.lambdify(args, sr.exprs, modules="numpy", cse=True)
+    g_funcs = _aux_integrands(sr.aux, sr.to_symbols, sr.ysyms, n)
+    quad_funcs = _quadrature_integrands(sr.quads, sr.to_symbols, sr.ysyms)
+    fun = _right_hand_side(f, quad_funcs, n, len(lags))
+    symbolic = {"rhs": sr.exprs, "y": sr.ysyms + sr.aux_syms, "Z": sr.zsyms, "t": t,
+                "quadratures": list(sr.quad_holders.values())}
+    return CompiledSystem(system, sr.layout, n, lags, sr.aux, sr.quads, fun, tuple(g_funcs),
+                          tuple(quad_funcs), symbolic, sr.exact_lags)
+
+
+@dataclasses.dataclass(frozen=True)
+class _SymbolicRHS:
+    """The right-hand side in symbols, before any back end compiles it (shared by compile_system and compile_family).
+
+    ``exprs``: one expression per state component, then one per auxiliary state, in ``t``, ``ysyms``
+    (states), ``aux_syms``, ``zsyms[k][i]`` (component i delayed by ``exact_lags[k]``), the quadrature
+    placeholders and any symbols the caller kept free (``keep`` of :func:`_symbolic_rhs`).
+    """
+
+    layout: dict
+    n_states: int
+    ysyms: list
+    aux: tuple
+    quads: tuple
+    quad_holders: dict
+    exact_lags: tuple
+    zsyms: list
+    aux_syms: list
+    exprs: list
+    to_symbols: "_StateSymbols"
+
+
+def _symbolic_rhs(system: System, rhs: list, integrals: str, name: str, keep=frozenset()) -> _SymbolicRHS:
+    """Layout, auxiliary states, lags and the expressions of the right-hand side ``rhs`` (parameters substituted).
+
+    ``keep``: symbols that stay free (a family's grid symbols); window lengths and delays may be
+    expressions in them instead of numbers.
+    """
     funcs = system.state_functions()
     layout, ysyms, index, n = _layout(system)
-    rhs = _resolved_rhs(system, values, name)
-    aux, quads, aux_expr, quad_holders = _integral_states(rhs, funcs, integrals, name)
-    exact = _exact_lags(rhs, aux, funcs)
-    lags = tuple(float(c) for c in exact)
-    zsyms = [[sympy.Dummy(f"Z{k}_{i}") for i in range(n)] for k in range(len(lags))]
+    aux, quads, aux_expr, quad_holders = _integral_states(rhs, funcs, integrals, name, keep)
+    exact = _exact_lags(rhs, aux, funcs, keep)
+    zsyms = [[sympy.Dummy(f"Z{k}_{i}") for i in range(n)] for k in range(len(exact))]
     to_symbols = _StateSymbols(funcs, index, ysyms, zsyms, exact, name)
     exprs = [to_symbols(e.xreplace({I: aux_expr[I] for I in aux_expr if isinstance(I, sympy.Integral)})
                          .xreplace(quad_holders), t) for e in rhs]
@@ -254,14 +296,8 @@ def compile_system(system: System, values: Mapping[str, object] | None = None, *
             sym = aux_expr[("m", k + 1)]
             exprs.append(to_symbols(a.coeff * a.g.subs(a.var, t), t) - a.lag * sym)
         aux_syms.append(sym)
-    args = [t, *ysyms, *aux_syms, *[z for row in zsyms for z in row], *quad_holders.values()]
-    f = sympy.lambdify(args, exprs, modules="numpy", cse=True)
-    g_funcs = _aux_integrands(aux, to_symbols, ysyms, n)
-    quad_funcs = _quadrature_integrands(quads, to_symbols, ysyms)
-    fun = _right_hand_side(f, quad_funcs, n, len(lags))
-    symbolic = {"rhs": exprs, "y": ysyms + aux_syms, "Z": zsyms, "t": t, "quadratures": list(quad_holders.values())}
-    return CompiledSystem(system, layout, n, lags, tuple(aux), tuple(quads), fun, tuple(g_funcs),
-                          tuple(quad_funcs), symbolic, exact)
+    return _SymbolicRHS(layout, n, ysyms, tuple(aux), tuple(quads), quad_holders, exact, zsyms, aux_syms, exprs,
+                        to_symbols)
 
 
 def _layout(system: System):
@@ -280,11 +316,15 @@ def _layout(system: System):
 def _resolved_rhs(system: System, values, name: str) -> list:
     """The right-hand side, component by component, at the parameter values; refuses parameters without one."""
     P = system.parameters
-    sub = P.substitution(P.resolve(values or {}, use_defaults=True))
+    return _substituted_rhs(system, P.substitution(P.resolve(values or {}, use_defaults=True)), name)
+
+
+def _substituted_rhs(system: System, sub: dict, name: str, keep=frozenset()) -> list:
+    """The right-hand side with the atom replacement ``sub``; refuses free symbols other than t and ``keep``."""
     rhs = []
     for s in system.states:
         rhs += list(apply_substitution(system.rhs(s), sub))
-    missing = set().union(*[e.free_symbols for e in rhs]) - {t}
+    missing = set().union(*[e.free_symbols for e in rhs]) - {t} - set(keep)
     missing = {m for m in missing if not any(m in i.variables for i in _outer_integrals_all(rhs))}
     if missing:
         names = sorted(str(m) for m in missing)
@@ -294,8 +334,11 @@ def _resolved_rhs(system: System, values, name: str) -> list:
     return rhs
 
 
-def _integral_states(rhs, funcs, integrals: str, name: str):
-    """Auxiliary states (windows, exponential memory) and quadratures for the integrals of ``rhs``."""
+def _integral_states(rhs, funcs, integrals: str, name: str, keep=frozenset()):
+    """Auxiliary states (windows, exponential memory) and quadratures for the integrals of ``rhs``.
+
+    A window length may be an expression in the symbols ``keep`` (a family's grid symbols).
+    """
     aux: list[_Aux] = []
     quads: list[_Quad] = []
     aux_expr: dict = {}
@@ -315,12 +358,10 @@ def _integral_states(rhs, funcs, integrals: str, name: str):
         if integrals == "quadrature":
             quadrature(I)
             continue
-        if hi == t and not width.free_symbols:
-            c = _exact(width, f"window of {I}")
-            if not c > 0:
-                raise InputError(f"window length must be positive, got {c} in {I}")
+        if hi == t and width.free_symbols <= set(keep):
+            c = _positive_lag(width, f"window of {I}", keep, f"window length must be positive, got {width} in {I}")
             if t not in g.free_symbols:
-                aux.append(_Aux("window", I, float(c), g, var, exact_lag=c))
+                aux.append(_Aux("window", I, float(c) if c.is_number else math.nan, g, var, exact_lag=c))
                 aux_expr[I] = sympy.Dummy(f"z{len(aux)}")
                 continue
         if hi == t and not lo.free_symbols and _exponential_memory(I, g, var, lo, funcs, aux, aux_expr):
@@ -337,7 +378,8 @@ def _exponential_memory(I, g, var, lo, funcs, aux, aux_expr) -> bool:
     exps = [(_exponential_terms(K), gg) for K, gg in split]
     if not all(e is not None for e, _ in exps):
         for K, _ in split:
-            _check_integrable(K)
+            if not K.free_symbols - {_u}:      # a kernel in a family's grid symbols is not checked here
+                _check_integrable(K)
         return False
     total = sympy.S.Zero
     for terms, gg in exps:
@@ -350,8 +392,12 @@ def _exponential_memory(I, g, var, lo, funcs, aux, aux_expr) -> bool:
     return True
 
 
-def _exact_lags(rhs, aux, funcs) -> tuple:
-    """The distinct lags, exact and sorted: delays of the states outside integrals, and window lengths."""
+def _exact_lags(rhs, aux, funcs, keep=frozenset()) -> tuple:
+    """The distinct lags, exact and sorted: delays of the states outside integrals, and window lengths.
+
+    With ``keep`` (a family's grid symbols) a lag may be an expression in them; expressions
+    sort after numbers and are distinct unless they simplify to the same expression.
+    """
     found = []
     for e in rhs + [a.g for a in aux]:
         for a in e.atoms(AppliedUndef):
@@ -359,18 +405,36 @@ def _exact_lags(rhs, aux, funcs) -> tuple:
                 c = sympy.simplify(t - a.args[0])
                 if t in c.free_symbols:
                     continue  # inside an integral, handled there
-                c = _exact(c, f"delay of {a}")
+                if not c.free_symbols or not c.free_symbols <= set(keep):
+                    c = _exact(c, f"delay of {a}")
                 if c != 0:
                     found.append(c)
     for c in found:
-        if not c > 0:
-            raise InputError(f"delays must be positive, got {c}; expected delayed values x(t - tau) with tau > 0")
+        _positive_lag(c, "delay", keep, f"delays must be positive, got {c}; expected delayed values "
+                                          f"x(t - tau) with tau > 0")
     found += [a.exact_lag for a in aux if a.kind == "window"]
     distinct = []
-    for c in sorted(found, key=float):
-        if not any(c == d for d in distinct):
+    for c in sorted(found, key=_lag_key):
+        if not any(c == d or ((c.free_symbols or d.free_symbols) and sympy.simplify(c - d) == 0)
+                   for d in distinct):
             distinct.append(c)
     return tuple(distinct)
+
+
+def _lag_key(c):
+    return (0, float(c), ()) if not c.free_symbols else (1, 0.0, sympy.default_sort_key(c))
+
+
+def _positive_lag(c, what: str, keep, message: str):
+    """``c`` as an exact number > 0, or an expression in ``keep`` not known to be ≤ 0; else InputError."""
+    if c.free_symbols and c.free_symbols <= set(keep):
+        if c.is_positive is False:
+            raise InputError(message)
+        return c
+    c = _exact(c, what)
+    if not c > 0:
+        raise InputError(message)
+    return c
 
 
 class _StateSymbols:
