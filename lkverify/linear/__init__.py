@@ -17,6 +17,8 @@
     the largest (and smallest) delay of a stability interval with a verified certificate, by bisection;
 :mod:`.linearise`
     a catalogued System linearised at an equilibrium, exactly (tangent coordinates of unit vectors and frames);
+:mod:`.family`
+    the same linearisation with grid names kept symbolic, its spectral verdict at many points (gain sweeps);
 :mod:`.run`, :mod:`.figures`
     the job of ``lkverify linear`` (one :class:`lkverify.report.Report`) and its figure.
 """
@@ -27,6 +29,7 @@ from .hierarchy import (LmiCertificate, LmiResult, certify_delay, check_certific
 from .interval import IntervalCertificate, certify_cover, certify_interval
 from .margin import CertifiedInterval, certified_interval
 from .linearise import Linearisation, linearise, linearise_at, tangent_basis
+from .family import LinearBatch, LinearFamily, linear_family
 from .model import LinearDelaySystem, parse_delay
 from .run import linear_report, system_from_values
 from .figures import plot_linear
@@ -38,4 +41,5 @@ __all__ = [
     "Crossing", "LinearDelaySystem", "Spectrum", "StabilityIntervals", "crossing_frequencies", "generator_matrix",
     "parse_delay", "rightmost_roots", "spectral_abscissa", "stability_intervals",
     "Linearisation", "linearise", "linearise_at", "tangent_basis",
+    "LinearBatch", "LinearFamily", "linear_family",
 ]

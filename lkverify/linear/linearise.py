@@ -1,7 +1,7 @@
 """Linearisation of a catalogued System at an equilibrium, exactly (SymPy), as a :class:`LinearDelaySystem`.
 
-The System is read through the simulator's compiled right-hand side
-(:func:`lkverify.simulate.compile.compile_system`, generated from the declared terms):
+The System is read through the simulator's symbolic right-hand side (the one
+:func:`lkverify.simulate.compile.compile_system` compiles, generated from the declared terms):
 delayed values x(t − c) are the lag rows Z_c, and each window integral
 z = ∫_{t−c}^t g(x(ξ)) dξ is an auxiliary state with ż = g(x(t)) − g(x(t − c)).  At an
 equilibrium p (x ≡ p, z* = c·g(p)) the linearisation is
@@ -9,7 +9,8 @@ equilibrium p (x ≡ p, z* = c·g(p)) the linearisation is
     δẋ = A δx(t) + A_d δx(t − h) + ∫_{t−h}^t D δx(ξ) dξ,
     A = ∂f/∂x,  A_d = ∂f/∂Z_h,  D = Σ_windows (∂f/∂z)(∂g/∂x)      (all at p, exact),
 
-with one delay h (every discrete lag and window length must be the same number).
+with one delay h (every discrete lag and window length must be the same number, or the same
+expression in the names kept symbolic).
 Constrained states are written in coordinates of their manifold, δx = T ξ, ξ = L δx:
 
 * a unit vector s (‖s‖ = 1) at r: s = r + B η, B a basis of r^⊥ — ``"tangent"``: B = E/‖u‖
@@ -30,6 +31,11 @@ infinite or two-valued limit means the right-hand side is not differentiable the
 point is refused.  Such entries are listed in :attr:`Linearisation.limits`: partial
 derivatives, whose Fréchet differentiability is the user's to check (for the torques of
 papers 000 and 002 it holds: they are O(‖s − r‖^{1+κ}), κ > 0).
+
+The same path serves a whole gain grid: :func:`lkverify.linear.family.linear_family` keeps
+some names symbolic (those of :func:`lkverify.simulate.family.compile_family`: scalar
+parameters, or free names inside a value such as F = diag(h, h, h)); the point must then be
+an equilibrium for every value of them, and A, A_d, D and the delay are expressions in them.
 
 Examples
 --------
@@ -53,7 +59,7 @@ import sympy
 from sympy.core.function import AppliedUndef
 
 from ..errors import InputError, UnsupportedInput
-from ..declare.parameters import ParameterKind
+from ..declare.parameters import ParameterKind, apply_substitution
 from ..declare.states import UnitVector
 from ..declare.symbols import t
 from .model import LinearDelaySystem
@@ -184,6 +190,10 @@ def linearise_at(system, equilibrium: Mapping, values: Mapping | None = None, *,
     UnsupportedInput
         Memory integrals or other integrals than windows of the states.
 
+    See Also
+    --------
+    lkverify.linear.family.linear_family : the same linearisation with some names kept symbolic.
+
     Examples
     --------
     >>> from lkverify import Equation, Parameters, System, Term, Vector, t
@@ -198,59 +208,85 @@ def linearise_at(system, equilibrium: Mapping, values: Mapping | None = None, *,
     ...
     lkverify.errors.InputError: system: expected an equilibrium (ẋ = 0), got the residual ... at the given point; give a point where the right-hand side vanishes
     """
-    from ..simulate.compile import compile_system
+    parts = _linear_parts(system, equilibrium, values, coordinates=coordinates, order=order)
+    h = parts.delay
+    lin = LinearDelaySystem(parts.A, Ad=parts.Ad, kernel=[parts.D] if parts.windows else (),
+                            name=f"{system.name or 'system'} linearised" + (f", h = {h}" if h is not None else ""))
+    return Linearisation(lin, h, parts.labels, parts.T, parts.L, parts.full, parts.limits)
+
+
+@dataclasses.dataclass(frozen=True)
+class _Parts:
+    """The reduced matrices of a linearisation, exact, possibly in the kept symbols (``symbols``)."""
+
+    A: object
+    Ad: object
+    D: object
+    windows: bool
+    delay: object
+    labels: tuple
+    T: object
+    L: object
+    full: dict
+    limits: tuple
+    symbols: tuple = ()
+
+
+def _linear_parts(system, equilibrium: Mapping, values: Mapping | None, *, coordinates: str = "tangent",
+                  order: Sequence[str] | None = None, keep: Sequence[str] = ()) -> _Parts:
+    """The one path of :func:`linearise_at` and :func:`lkverify.linear.family.linear_family`.
+
+    ``keep``: names (scalar parameters, or free names inside ``values``) that stay symbolic;
+    the equilibrium must then be one for every value of them, and the matrices and the delay
+    are expressions in their symbols (``_Parts.symbols``, in the order of ``keep``).
+    """
+    from ..simulate.compile import symbolic_system     # the simulator's symbolic right-hand side (module docstring)
 
     if coordinates not in COORDINATES:
         raise InputError(f"coordinates: expected one of {', '.join(COORDINATES)}, got {coordinates!r}")
     name = system.name or "system"
-    comp = compile_system(system, dict(values or {}))
-    _refuse_time_varying(comp, system, name)
-    if comp.quads or any(a.kind != "window" for a in comp.aux):
+    sym = symbolic_system(system, values, grid=tuple(keep))
+    symbols, sub, sr = sym.symbols, sym.substitution, sym.rhs
+    _refuse_time_varying(sr, system, name)
+    if sr.quads or any(a.kind != "window" for a in sr.aux):
         raise UnsupportedInput(f"{name}: expected discrete delays and window integrals ∫_{{t−τ}}^t g(x) dξ only; "
                                f"got a memory or weighted integral; linearise a system without them")
-    if len(comp.exact_lags) > 1:
+    if len(sr.exact_lags) > 1:
         raise InputError(f"{name}: expected one delay (a LinearDelaySystem has one h), got the lags "
-                         f"{', '.join(map(str, comp.exact_lags))}; set the delays equal or linearise by hand")
-    point = _point(system, equilibrium, values, name)
-    n = comp.n_states
-    sy = comp.symbolic
-    real = {v: sympy.Dummy(v.name, real=True) for v in [*sy["y"], *(z for row in sy["Z"] for z in row)]}
-    x, z = [real[v] for v in sy["y"][:n]], [real[v] for v in sy["y"][n:]]
-    Zh = [real[v] for v in sy["Z"][0]] if comp.exact_lags else []
+                         f"{', '.join(map(str, sr.exact_lags))}; set the delays equal or linearise by hand")
+    point = _point(system, equilibrium, sub, name)
+    n = sr.n_states
+    real = {v: sympy.Dummy(v.name, real=True) for v in [*sr.ysyms, *sr.aux_syms, *(z for row in sr.zsyms for z in row)]}
+    x, z = [real[v] for v in sr.ysyms], [real[v] for v in sr.aux_syms]
+    Zh = [real[v] for v in sr.zsyms[0]] if sr.exact_lags else []
     limits: list = []
-    zstar = [a.exact_lag * _g_at(a, system, point, limits) for a in comp.aux]
+    zstar = [a.exact_lag * _g_at(a, system, point, limits) for a in sr.aux]
     at = {**dict(zip(x, point)), **dict(zip(Zh, point)), **dict(zip(z, zstar))}
-    f = sympy.Matrix(sy["rhs"][:n]).xreplace(real)          # real states: d|x|/dx = sign(x), not re/im parts
-    gnow = sympy.Matrix(sy["rhs"][n:]).xreplace(real) if z else sympy.zeros(0, 1)
-    residual = [_value(e, at, limits, _component(system, i)) for i, e in enumerate(f)]
-    bad = [(i, r) for i, r in enumerate(residual) if not _is_zero(r)]
-    if bad:
-        shown = ", ".join(f"{_component(system, i)} = {sympy.simplify(r)}" for i, r in bad)
-        raise InputError(f"{name}: expected an equilibrium (ẋ = 0), got the residual {shown} at the given point; "
-                         f"give a point where the right-hand side vanishes")
+    f = sympy.Matrix(sr.exprs[:n]).xreplace(real)          # real states: d|x|/dx = sign(x), not re/im parts
+    gnow = sympy.Matrix(sr.exprs[n:]).xreplace(real) if z else sympy.zeros(0, 1)
+    _check_equilibrium(f, at, limits, system, symbols, name)
     A = _jacobian(f, x, at, limits, system, "x(t)")
     Ad = _jacobian(f, Zh, at, limits, system, "x(t−h)") if Zh else sympy.zeros(n, n)
     D = sympy.zeros(n, n)
     if z:
         D = _jacobian(f, z, at, limits, system, "z") * _jacobian(gnow, x, at, limits, system, "g")
-    T, L, labels = _reduction(system, point, comp.layout, coordinates, order, name)
+    T, L, labels = _reduction(system, point, sr.layout, coordinates, order, name)
     for label, M in (("A", A), ("A_d", Ad), ("D", D)):
         leak = ((sympy.eye(n) - T * L) * M * T).applyfunc(sympy.simplify)
         if not leak.is_zero_matrix:
             raise InputError(f"{name}: expected the linear part to keep the states on their manifold, got {label} "
                              f"moving them off it ({leak.T}); check the equilibrium and the constraints")
     red = [(L * M * T).applyfunc(sympy.simplify) for M in (A, Ad, D)]
-    h = comp.exact_lags[0] if comp.exact_lags else None
-    lin = LinearDelaySystem(red[0], Ad=red[1], kernel=[red[2]] if z else (),
-                            name=f"{name} linearised" + (f", h = {h}" if h is not None else ""))
-    return Linearisation(lin, h, tuple(labels), T, L, {"A": A, "Ad": Ad, "D": D}, tuple(limits))
+    h = sr.exact_lags[0] if sr.exact_lags else None
+    return _Parts(red[0], red[1], red[2], bool(z), h, tuple(labels), T, L, {"A": A, "Ad": Ad, "D": D},
+                  tuple(limits), tuple(symbols))
 
 
 # ---------------------------------------------------------------------------------------------- inputs
 
 
-def _refuse_time_varying(comp, system, name):
-    if any(t in sympy.sympify(e).free_symbols for e in comp.symbolic["rhs"]):
+def _refuse_time_varying(sr, system, name):
+    if any(t in sympy.sympify(e).free_symbols for e in sr.exprs):
         coeffs = [s.name for s in system.parameters if s.kind is ParameterKind.COEFFICIENT]
         which = f" (the coefficient{'s' if len(coeffs) > 1 else ''} {', '.join(coeffs)})" if coeffs else ""
         ex = f"{coeffs[0]}=1/2" if coeffs else None
@@ -259,9 +295,9 @@ def _refuse_time_varying(comp, system, name):
                          topic="parameters", example=ex)
 
 
-def _point(system, equilibrium, values, name) -> list:
+def _point(system, equilibrium, sub, name) -> list:
+    """The equilibrium as one list (state order); a parameter's name stands for its value (``sub`` applied)."""
     P = system.parameters
-    resolved = P.resolve(dict(values or {}), use_defaults=True)
     eq = dict(equilibrium)
     unknown = sorted(set(eq) - {s.name for s in system.states})
     missing = [s.name for s in system.states if s.name not in eq]
@@ -274,13 +310,25 @@ def _point(system, equilibrium, values, name) -> list:
     for s in system.states:
         v = eq[s.name]
         if isinstance(v, str) and v in P:
-            v = resolved[v]
+            v = apply_substitution(P[v].obj, sub)
         m = sympy.Matrix(sympy.sympify(v) if isinstance(v, str) else v)
         if m.shape not in ((s.dim, 1), (1, s.dim)):
             raise InputError(f"{name}: state {s.name}: expected {s.dim} components, got shape {m.shape}")
         point += list(m)
     _check_manifold(system, point, name)
     return point
+
+
+def _check_equilibrium(f, at, limits, system, symbols, name):
+    """ẋ = 0 at the point (identically in the kept ``symbols``), else InputError with the residual."""
+    residual = [_value(e, at, limits, _component(system, i)) for i, e in enumerate(f)]
+    bad = [(i, r) for i, r in enumerate(residual) if not _is_zero(r)]
+    if bad:
+        shown = ", ".join(f"{_component(system, i)} = {sympy.simplify(r)}" for i, r in bad)
+        every = " at every grid point" if symbols else ""
+        which = f" for all values of {', '.join(map(str, symbols))}" if symbols else ""
+        raise InputError(f"{name}: expected an equilibrium (ẋ = 0){every}, got the residual {shown} at the given "
+                         f"point; give a point where the right-hand side vanishes{which}")
 
 
 def _check_manifold(system, point, name):

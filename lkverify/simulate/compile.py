@@ -54,7 +54,7 @@ from ..declare.parameters import apply_substitution
 from ..declare.symbols import t
 from ..declare.system import System
 
-__all__ = ["CompiledSystem", "compile_system"]
+__all__ = ["CompiledSystem", "SymbolicSystem", "compile_system", "symbolic_system"]
 
 _u = sympy.Symbol("u", real=True)
 
@@ -298,6 +298,57 @@ def _symbolic_rhs(system: System, rhs: list, integrals: str, name: str, keep=fro
         aux_syms.append(sym)
     return _SymbolicRHS(layout, n, ysyms, tuple(aux), tuple(quads), quad_holders, exact, zsyms, aux_syms, exprs,
                         to_symbols)
+
+
+@dataclasses.dataclass(frozen=True)
+class SymbolicSystem:
+    """A System's right-hand side in symbols, as the back ends read it (:func:`symbolic_system`).
+
+    Attributes
+    ----------
+    symbols : tuple of sympy.Symbol
+        The symbols of the names kept free (``grid``), in their order.
+    substitution : dict
+        Parameter atom → value (the kept names' values contain their symbols).
+    rhs : object
+        Layout, auxiliary states (``aux``: kind, integrand ``g``, variable ``var``, ``exact_lag``),
+        quadrature terms (``quads``), the distinct lags (``exact_lags``) and the expressions
+        (``exprs``: states, then auxiliary states) in the symbols ``ysyms``, ``aux_syms``,
+        ``zsyms[k][i]`` (component i delayed by lag k) and ``symbols``.
+    """
+
+    symbols: tuple
+    substitution: dict
+    rhs: _SymbolicRHS
+
+
+def symbolic_system(system: System, values: Mapping[str, object] | None = None, *, grid=(),
+                    integrals: str = "auto") -> SymbolicSystem:
+    """The right-hand side :func:`compile_system` compiles (``grid=()``), or with the names ``grid`` kept free.
+
+    With ``grid`` it is what :func:`lkverify.simulate.family.compile_family` compiles (values
+    as it takes them); :mod:`lkverify.linear` linearises it.  No code is generated.
+
+    Examples
+    --------
+    >>> from lkverify import Parameters, Vector, System, Equation, Term, t
+    >>> P = Parameters(); a = P.scalar("a", default=1); tau = P.delay("tau", default=1)
+    >>> x = Vector("x", 1); sys = System([Equation(x, [Term(-a * x(t - tau)[0])])], parameters=P)
+    >>> sym = symbolic_system(sys, grid=("tau",))
+    >>> sym.symbols, sym.rhs.exact_lags, sym.rhs.exprs
+    ((tau,), (tau,), [-_Z0_0])
+    """
+    name = system.name or "system"
+    if grid:
+        from .family import _grid_substitution
+
+        symbols, sub = _grid_substitution(system, dict(values or {}), tuple(grid))
+    else:
+        P = system.parameters
+        symbols, sub = [], P.substitution(P.resolve(values or {}, use_defaults=True))
+    keep = frozenset(symbols)
+    rhs = _substituted_rhs(system, sub, name, keep)
+    return SymbolicSystem(tuple(symbols), sub, _symbolic_rhs(system, rhs, integrals, name, keep))
 
 
 def _layout(system: System):
