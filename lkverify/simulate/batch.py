@@ -4,24 +4,9 @@
 point's result does not depend on the batch it is in: a batch equals its points run one
 by one, bit for bit.
 
-Method (per point; the method of steps of :mod:`lkverify.simulate.solver`, compiled)
----------------------------------------------------------------------------------------
-* Dormand–Prince 5(4) with the PI step-size control and the 4th-order dense output
-  ``contd5`` of Hairer & Wanner's DOPRI5 (Solving ODEs I, II.5/II.6); the error norm is
-  the RMS of ``err_i / (atol + rtol·max(|y_i|, |y_new,i|))`` over all components
-  (auxiliary states included).  The first step is Hairer's ``hinit`` estimate.
-* Every step is at most ``min(lags)`` long, so every delayed stage value
-  ``y(t_n + c h − lag)`` lies in the accepted history: the constant initial history
-  for arguments ≤ t0, else the stored dense output of the accepted step containing it
-  (found by a moving pointer; steps older than the longest lag are dropped).
-* Steps land on the breakpoints ``t0 + Σ kᵢ lagᵢ`` with ``1 ≤ Σ kᵢ ≤ 4``
-  (:func:`lkverify.simulate.events.breakpoints`, as :func:`~lkverify.simulate.solver.solve_dde`);
-  after a landing step the step size proposed before it is kept.
-* Auxiliary window states ``z = ∫_{t−c}^t g(x)`` are integrated as ``ż = g(x(t)) −
-  g(x(t−c))`` and, unlike :func:`~lkverify.simulate.runs.simulate`, NOT re-synchronised by
-  quadrature after each step: their drift is not removed (measured without the
-  re-synchronisation: 5.6e-11 on [0, 200] for x' = −∫_{t−1}^t x; ``tests/simulate/test_family.py``
-  compares the states with :func:`~lkverify.simulate.runs.simulate`).
+The integrator is :mod:`lkverify.simulate.dopri` (DOPRI5 with its dense output, the method
+of steps, breakpoints; window auxiliaries NOT re-synchronised by quadrature, unlike
+:func:`~lkverify.simulate.runs.simulate`: see there).
 
 Outcomes (codes index :data:`OUTCOMES`, the members of :class:`~lkverify.simulate.solver.Outcome`)
 -------------------------------------------------------------------------------------------------
@@ -53,34 +38,19 @@ import dataclasses
 import math
 import time
 
-import numba
 import numpy as np
-from numba import types
 
 from ..errors import InputError
-from .events import BLOWUP_GROWTH, FLOOR_WINDOW, breakpoints
+from .dopri import OUTCOMES, run_batch
+from .events import breakpoints
 from .runs import MAX_STEPS
 from .solver import Outcome
 
-__all__ = ["BatchResult", "OUTCOMES", "compile_rhs", "integrate"]
+__all__ = ["BatchResult", "DISCONTINUITY_ORDER", "OUTCOMES", "integrate"]
 
-#: outcome code → Outcome (``BatchResult.outcome`` holds the codes)
-OUTCOMES = tuple(Outcome)
-_SUCCESS, _DIVERGED, _COLLAPSE, _BUDGET = (OUTCOMES.index(o) for o in
-                                           (Outcome.SUCCESS, Outcome.DIVERGED, Outcome.STEP_COLLAPSE, Outcome.BUDGET))
+_SUCCESS, _BUDGET = OUTCOMES.index(Outcome.SUCCESS), OUTCOMES.index(Outcome.BUDGET)
 #: breakpoints t0 + Σ kᵢ lagᵢ with Σ kᵢ up to this order are landed on (as solve_dde's default)
 DISCONTINUITY_ORDER = 4
-
-_f8, _i8 = types.float64, types.int64
-_vec, _mat = types.float64[::1], types.float64[:, ::1]
-#: the generated right-hand side: rhs(t, y, Z, p, out)
-RHS_SIGNATURE = types.void(_f8, _vec, _mat, _vec, _vec)
-_RHS = types.FunctionType(RHS_SIGNATURE)
-
-
-def compile_rhs(py_func):
-    """``py_func(t, y, Z, p, out)`` compiled by numba (IEEE semantics: x/0 gives inf or nan, never raises)."""
-    return numba.njit(RHS_SIGNATURE, error_model="numpy")(py_func)
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -103,6 +73,16 @@ class BatchResult:
         Accepted steps, right-hand-side evaluations and rejected steps per point.
     seconds : float
         Wall-clock time of the batch.
+
+    Examples
+    --------
+    >>> from lkverify import Parameters, Vector, System, Equation, Term, t
+    >>> from lkverify.simulate.family import compile_family
+    >>> P = Parameters(); a = P.scalar("a", default=1); x = Vector("x", 2)
+    >>> fam = compile_family(System([Equation(x, [Term(-a * x(t - 1))])], parameters=P), grid=["a"])
+    >>> res = fam.integrate([[1.0], [0.5]], {"x": [1, 2]}, t_end=1.0, t_eval=[0.0, 1.0])
+    >>> res.outcomes, res.y.shape, res.states(1)["x"].round(12).tolist()      # x = x0 (1 − a t) on [0, 1]
+    ([<Outcome.SUCCESS: 'success'>, <Outcome.SUCCESS: 'success'>], (2, 2, 2), [[1.0, 2.0], [0.5, 1.0]])
     """
 
     outcome: np.ndarray
@@ -151,6 +131,20 @@ def integrate(family, points, history, *, t_end: float, t_eval, rtol: float = 1e
     ------
     InputError
         Bad arguments, or a point whose lags are not positive and finite.
+
+    Examples
+    --------
+    >>> from lkverify import Parameters, Vector, System, Equation, Term, t
+    >>> from lkverify.simulate.family import compile_family
+    >>> P = Parameters(); tau = P.delay("tau", default=1); x = Vector("x", 1)
+    >>> fam = compile_family(System([Equation(x, [Term(-x(t - tau)[0])])], parameters=P), grid=["tau"])
+    >>> res = integrate(fam, [[0.5], [2.0]], {"x": [1]}, t_end=1.0, t_eval=[1.0])
+    >>> res.y[:, 0, 0].round(12).tolist()       # τ = 1/2: 1 − t + (t − 1/2)²/2 at t = 1; τ = 2: 1 − t
+    [0.125, 0.0]
+    >>> integrate(fam, [[-1.0]], {"x": [1]}, t_end=1.0, t_eval=[1.0])
+    Traceback (most recent call last):
+        ...
+    lkverify.errors.InputError: points[0]: expected positive finite lags, got [-1.0] for tau at {'tau': -1.0}; drop the point or fix the delay
     """
     start = time.perf_counter()
     pts, te = _check(family, points, t_end, t_eval, rtol, atol, divergence_bound, max_steps, t0)
@@ -170,7 +164,7 @@ def integrate(family, points, history, *, t_end: float, t_eval, rtol: float = 1e
     code = np.where(skip, _BUDGET, _SUCCESS).astype(np.int64)
     t_fail = np.where(skip, float(t0), np.nan)
     stats = np.zeros((N, 3), dtype=np.int64)
-    _run_batch(rhs, pts, y0, x0, lags, targets, counts, float(t0), te, float(rtol), float(atol),
+    run_batch(rhs, pts, y0, x0, lags, targets, counts, float(t0), te, float(rtol), float(atol),
                float(divergence_bound), int(max_steps), (t_end - t0) / MAX_STEPS, skip.astype(np.int64), y, code,
                t_fail, stats)
     t_fail[code == _SUCCESS] = np.nan
@@ -224,300 +218,3 @@ def _check(family, points, t_end, t_eval, rtol, atol, bound, max_steps, t0):
                          f"{len(te)} values from {te.min() if te.size else '-'} to {te.max() if te.size else '-'}; "
                          f"e.g. numpy.linspace(t0, t_end, 1001)")
     return np.ascontiguousarray(pts), te
-
-
-# -- the compiled kernel -----------------------------------------------------------------
-# Dormand–Prince 5(4) (Hairer & Wanner, DOPRI5)
-_C2, _C3, _C4, _C5 = 0.2, 0.3, 0.8, 8.0 / 9.0
-_A21 = 0.2
-_A31, _A32 = 3.0 / 40.0, 9.0 / 40.0
-_A41, _A42, _A43 = 44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0
-_A51, _A52, _A53, _A54 = 19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0
-_A61, _A62, _A63, _A64, _A65 = 9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0, -5103.0 / 18656.0
-_A71, _A73, _A74, _A75, _A76 = 35.0 / 384.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0
-_E1, _E3, _E4, _E5, _E6, _E7 = (71.0 / 57600.0, -71.0 / 16695.0, 71.0 / 1920.0, -17253.0 / 339200.0, 22.0 / 525.0,
-                                -1.0 / 40.0)
-_D1, _D3, _D4, _D5, _D6, _D7 = (-12715105075.0 / 11282082432.0, 87487479700.0 / 32700410799.0,
-                                -10690763975.0 / 1880347072.0, 701980252875.0 / 199316789632.0,
-                                -1453857185.0 / 822651844.0, 69997945.0 / 29380423.0)
-_SAFE, _BETA, _FAC1, _FAC2 = 0.9, 0.04, 0.2, 10.0
-_EXPO1 = 0.2 - _BETA * 0.75
-_EPS = float(np.finfo(float).eps)
-_GROWTH = float(BLOWUP_GROWTH)
-_WINDOW = int(FLOOR_WINDOW)
-
-_jit = numba.njit(cache=True, error_model="numpy")
-#: the helpers of every step are inlined into the kernel (measured: 1.9 → 1.6 ms for 1216 steps of paper 002's system)
-_inline = numba.njit(cache=True, error_model="numpy", inline="always")
-
-
-@_inline
-def _dense(C, j, theta, out, ns):
-    """contd5 of stored step j at theta into out[:ns]."""
-    th1 = 1.0 - theta
-    for i in range(ns):
-        out[i] = C[j, 0, i] + theta * (C[j, 1, i] + th1 * (C[j, 2, i] + theta * (C[j, 3, i] + th1 * C[j, 4, i])))
-
-
-@_inline
-def _delayed(s, lags, t0, x0, Ht, Hh, C, m, hint, Z):
-    """Z[k] = y(s − lags[k]) (states): the constant history before t0, else the stored steps."""
-    ns = x0.shape[0]
-    for k in range(lags.shape[0]):
-        q = s - lags[k]
-        if q <= t0 or m == 0:
-            for i in range(ns):
-                Z[k, i] = x0[i]
-            continue
-        j = hint[k]
-        if j >= m:
-            j = m - 1
-        while j + 1 < m and Ht[j + 1] <= q:
-            j += 1
-        while j > 0 and Ht[j] > q:
-            j -= 1
-        hint[k] = j
-        _dense(C, j, (q - Ht[j]) / Hh[j], Z[k], ns)
-
-
-@_inline
-def _stage(rhs, s, ytmp, lags, t0, x0, Ht, Hh, C, m, hint, Z, p, out):
-    _delayed(s, lags, t0, x0, Ht, Hh, C, m, hint, Z)
-    rhs(s, ytmp, Z, p, out)
-
-
-@_inline
-def _norm2(y):
-    acc = 0.0
-    for v in y:
-        acc += v * v
-    return acc
-
-
-@_jit
-def _crossing(y, yn, K, h, t, bound, n):
-    """First time in [t, t + h] where ‖y‖ reaches bound, on the step's dense output (bisection); t + h if unknown."""
-    r = np.empty((5, n))
-    for i in range(n):
-        d = yn[i] - y[i]
-        b = h * K[0, i] - d
-        r[0, i], r[1, i], r[2, i] = y[i], d, b
-        r[3, i] = d - h * K[6, i] - b
-        r[4, i] = h * (_D1 * K[0, i] + _D3 * K[2, i] + _D4 * K[3, i] + _D5 * K[4, i] + _D6 * K[5, i] + _D7 * K[6, i])
-    if not (math.isfinite(_norm2(yn)) and _norm2(yn) > bound * bound):
-        return t + h
-    lo, hi = 0.0, 1.0
-    v = np.empty(n)
-    for _ in range(60):
-        mid = 0.5 * (lo + hi)
-        th1 = 1.0 - mid
-        for i in range(n):
-            v[i] = r[0, i] + mid * (r[1, i] + th1 * (r[2, i] + mid * (r[3, i] + th1 * r[4, i])))
-        if _norm2(v) > bound * bound:
-            hi = mid
-        else:
-            lo = mid
-    return t + hi * h
-
-
-@_jit
-def _initial_step(rhs, t0, y, f0, lags, x0, Ht, Hh, C, hint, Z, p, rtol, atol, hmax, ytmp, f1):
-    """Hairer's hinit for order 5 (the delayed values of the trial Euler step are history)."""
-    n = y.shape[0]
-    dnf, dny = 0.0, 0.0
-    for i in range(n):
-        sk = atol + rtol * abs(y[i])
-        dnf += (f0[i] / sk) ** 2
-        dny += (y[i] / sk) ** 2
-    h = 1e-6 if (dnf <= 1e-10 or dny <= 1e-10) else math.sqrt(dny / dnf) * 0.01
-    h = min(h, hmax)
-    for i in range(n):
-        ytmp[i] = y[i] + h * f0[i]
-    _stage(rhs, t0 + h, ytmp, lags, t0, x0, Ht, Hh, C, 0, hint, Z, p, f1)
-    der2 = 0.0
-    for i in range(n):
-        sk = atol + rtol * abs(y[i])
-        der2 += ((f1[i] - f0[i]) / sk) ** 2
-    der2 = math.sqrt(der2) / h
-    der12 = max(abs(der2), math.sqrt(dnf))
-    h1 = (0.01 / der12) ** 0.2 if der12 > 1e-15 else max(1e-6, h * 1e-3)
-    h = min(100.0 * h, h1, hmax)
-    return h if (h > 0.0 and math.isfinite(h)) else hmax
-
-
-@_jit
-def _move(Ht, Hh, C, Ht2, Hh2, C2, j, m, ns):
-    """Copy stored steps j .. j + m − 1 to 0 .. m − 1 of the second arrays (which may be the first)."""
-    for r in range(m):
-        Ht2[r], Hh2[r] = Ht[j + r], Hh[j + r]
-        for c in range(5):
-            for i in range(ns):
-                C2[r, c, i] = C[j + r, c, i]
-
-
-@_jit
-def _store(Ht, Hh, C, m, t, h, y, yn, K, ns, t_keep):
-    """Append the accepted step [t, t + h] (states' dense output); drop steps before t_keep when full."""
-    cap = Ht.shape[0]
-    if m == cap:
-        j = 0
-        while j + 2 < m and Ht[j + 2] <= t_keep:      # keep the step containing t_keep and one before it
-            j += 1
-        if j > 0:
-            m -= j
-            _move(Ht, Hh, C, Ht, Hh, C, j, m, ns)
-        if m > cap // 2:
-            Ht2, Hh2, C2 = np.empty(2 * cap), np.empty(2 * cap), np.empty((2 * cap, 5, ns))
-            _move(Ht, Hh, C, Ht2, Hh2, C2, 0, m, ns)
-            Ht, Hh, C = Ht2, Hh2, C2
-    Ht[m], Hh[m] = t, h
-    for i in range(ns):
-        d = yn[i] - y[i]
-        b = h * K[0, i] - d
-        C[m, 0, i], C[m, 1, i], C[m, 2, i] = y[i], d, b
-        C[m, 3, i] = d - h * K[6, i] - b
-        C[m, 4, i] = h * (_D1 * K[0, i] + _D3 * K[2, i] + _D4 * K[3, i] + _D5 * K[4, i] + _D6 * K[5, i]
-                          + _D7 * K[6, i])
-    return Ht, Hh, C, m + 1
-
-
-@_inline
-def _landing(t, h, target, hmax):
-    """(step, lands on target): stretched by up to 1 % (never beyond hmax) or cut to land on the target."""
-    if (t + 1.01 * h >= target and target - t <= hmax) or t + h >= target:
-        return target - t, True
-    return h, False
-
-
-@_inline
-def _control(err, h, facold, rejected):
-    """Hairer's PI step-size control: (accepted, next step size, facold)."""
-    if not math.isfinite(err):
-        return False, h * _FAC1, facold
-    fac11 = err ** _EXPO1
-    if err > 1.0:
-        return False, h / min(1.0 / _FAC1, fac11 / _SAFE), facold
-    h_new = h / max(1.0 / _FAC2, min(1.0 / _FAC1, fac11 / facold ** _BETA / _SAFE))
-    return True, (min(h_new, h) if rejected else h_new), max(err, 1e-4)
-
-
-@_inline
-def _attempt(rhs, p, t, h, t_new, y, K, yt, yn, lags, t0, x0, Ht, Hh, C, m, hint, Z, rtol, atol):
-    """Stages 2–7 of a DOPRI5 step from (t, y), K[0] = f(t, y): yn the new state, K[6] = f(t_new, yn); error norm."""
-    n = y.shape[0]
-    for i in range(n):
-        yt[i] = y[i] + h * _A21 * K[0, i]
-    _stage(rhs, t + _C2 * h, yt, lags, t0, x0, Ht, Hh, C, m, hint, Z, p, K[1])
-    for i in range(n):
-        yt[i] = y[i] + h * (_A31 * K[0, i] + _A32 * K[1, i])
-    _stage(rhs, t + _C3 * h, yt, lags, t0, x0, Ht, Hh, C, m, hint, Z, p, K[2])
-    for i in range(n):
-        yt[i] = y[i] + h * (_A41 * K[0, i] + _A42 * K[1, i] + _A43 * K[2, i])
-    _stage(rhs, t + _C4 * h, yt, lags, t0, x0, Ht, Hh, C, m, hint, Z, p, K[3])
-    for i in range(n):
-        yt[i] = y[i] + h * (_A51 * K[0, i] + _A52 * K[1, i] + _A53 * K[2, i] + _A54 * K[3, i])
-    _stage(rhs, t + _C5 * h, yt, lags, t0, x0, Ht, Hh, C, m, hint, Z, p, K[4])
-    for i in range(n):
-        yt[i] = y[i] + h * (_A61 * K[0, i] + _A62 * K[1, i] + _A63 * K[2, i] + _A64 * K[3, i] + _A65 * K[4, i])
-    _delayed(t_new, lags, t0, x0, Ht, Hh, C, m, hint, Z)        # stages 6 and 7 share the time t + h
-    rhs(t_new, yt, Z, p, K[5])
-    for i in range(n):
-        yn[i] = y[i] + h * (_A71 * K[0, i] + _A73 * K[2, i] + _A74 * K[3, i] + _A75 * K[4, i] + _A76 * K[5, i])
-    rhs(t_new, yn, Z, p, K[6])
-    err = 0.0
-    for i in range(n):
-        e = h * (_E1 * K[0, i] + _E3 * K[2, i] + _E4 * K[3, i] + _E5 * K[4, i] + _E6 * K[5, i] + _E7 * K[6, i])
-        sk = atol + rtol * max(abs(y[i]), abs(yn[i]))
-        err += (e / sk) ** 2
-    return math.sqrt(err / n)
-
-
-@_jit
-def _run_point(rhs, p, y0, x0, lags, targets, t0, t_eval, rtol, atol, bound, max_steps, floor, out):
-    """One point: (outcome code, t_fail, accepted steps, rhs evaluations, rejected steps); samples into out."""
-    n, ns, nl = y0.shape[0], x0.shape[0], lags.shape[0]
-    t_end = targets[targets.shape[0] - 1]
-    hmax, lag_max = t_end - t0, 0.0
-    for k in range(nl):
-        hmax = min(hmax, lags[k])
-        lag_max = max(lag_max, lags[k])
-    Ht, Hh, C = np.empty(64), np.empty(64), np.empty((64, 5, ns))
-    m = 0
-    hint = np.zeros(max(nl, 1), dtype=np.int64)
-    Z = np.empty((nl, ns))
-    K = np.empty((7, n))
-    y, yn, yt = np.empty(n), np.empty(n), np.empty(n)
-    for i in range(n):
-        y[i] = y0[i]
-    ke, n_eval = 0, t_eval.shape[0]
-    while ke < n_eval and t_eval[ke] <= t0:
-        out[ke, :] = y[:ns]
-        ke += 1
-    if not _norm2(y) <= bound * bound:
-        return _DIVERGED, t0, 0, 0, 0
-    _stage(rhs, t0, y, lags, t0, x0, Ht, Hh, C, m, hint, Z, p, K[0])
-    if not math.isfinite(_norm2(K[0])):
-        return _DIVERGED, t0, 0, 1, 0
-    h = _initial_step(rhs, t0, y, K[0], lags, x0, Ht, Hh, C, hint, Z, p, rtol, atol, hmax, yt, K[1])
-    nfev, n_steps, n_rej = 2, 0, 0
-    scale = max(1.0, math.sqrt(_norm2(y)))
-    recent = np.zeros(_WINDOW)
-    recent_sum = 0.0
-    t, it, facold, rejected, bad = t0, 0, 1e-4, False, False
-    while True:
-        h_prop = min(h, hmax)
-        h, landing = _landing(t, h_prop, targets[it], hmax)
-        if h <= 10.0 * _EPS * abs(t):
-            return (_DIVERGED if bad else _COLLAPSE), t, n_steps, nfev, n_rej
-        t_new = targets[it] if landing else t + h
-        err = _attempt(rhs, p, t, h, t_new, y, K, yt, yn, lags, t0, x0, Ht, Hh, C, m, hint, Z, rtol, atol)
-        nfev += 6
-        accepted, h_new, facold = _control(err, h, facold, rejected)
-        rejected = not accepted
-        if not accepted:
-            n_rej += 1
-            bad = bad or not math.isfinite(err)
-            h = h_new
-            continue
-        n_steps += 1
-        Ht, Hh, C, m = _store(Ht, Hh, C, m, t, h, y, yn, K, ns, t - lag_max)
-        while ke < n_eval and t_eval[ke] <= t_new:
-            _dense(C, m - 1, (t_eval[ke] - t) / h, out[ke], ns)
-            ke += 1
-        yy = _norm2(yn)
-        if not yy <= bound * bound:
-            return _DIVERGED, _crossing(y, yn, K, h, t, bound, n), n_steps, nfev, n_rej
-        for i in range(n):
-            y[i] = yn[i]
-            K[0, i] = K[6, i]
-        slot = n_steps % _WINDOW
-        recent_sum += h - recent[slot]
-        recent[slot] = h
-        t = t_new
-        if landing:
-            it += 1
-            if it == targets.shape[0]:
-                return _SUCCESS, t, n_steps, nfev, n_rej
-            h_new = max(h_new, h_prop)
-        if n_steps >= _WINDOW and recent_sum / _WINDOW < floor:
-            return (_DIVERGED if math.sqrt(yy) > _GROWTH * scale else _COLLAPSE), t, n_steps, nfev, n_rej
-        if n_steps >= max_steps:
-            return _BUDGET, t, n_steps, nfev, n_rej
-        h = h_new
-
-
-_KERNEL = types.void(_RHS, _mat, _mat, _vec, _mat, _mat, types.int64[::1], _f8, _vec, _f8, _f8, _f8, _i8, _f8,
-                     types.int64[::1], types.float64[:, :, ::1], types.int64[::1], _vec, types.int64[:, ::1])
-
-
-@numba.njit(_KERNEL, cache=True, error_model="numpy")
-def _run_batch(rhs, P, Y0, x0, lags, targets, counts, t0, t_eval, rtol, atol, bound, max_steps, floor, skip, out,
-               code, t_fail, stats):
-    """Every point not skipped, one after the other: codes, failure times, (steps, evaluations, rejections)."""
-    for i in range(P.shape[0]):
-        if skip[i]:
-            continue
-        c, tf, ns, nf, nr = _run_point(rhs, P[i], Y0[i], x0, lags[i], targets[i, :counts[i]], t0, t_eval, rtol,
-                                       atol, bound, max_steps, floor, out[i])
-        code[i], t_fail[i] = c, tf
-        stats[i, 0], stats[i, 1], stats[i, 2] = ns, nf, nr

@@ -399,7 +399,7 @@ def _compiled(source: str, key: str):
     with _LOCK:
         hit = _CACHE.get(key)
         if hit is None:
-            from .batch import compile_rhs
+            from .dopri import compile_rhs
 
             namespace: dict = {}
             exec(compile(source, f"<lkverify family {key[:12]}>", "exec"), namespace)  # noqa: S102 - generated
