@@ -120,7 +120,7 @@ def integrate(family, points, history, *, t_end: float, t_eval, rtol: float = 1e
     t_eval : array_like
         Nondecreasing sample times in [t0, t_end].
     rtol, atol : float
-        Tolerances of the step-size control.
+        Tolerances of the step-size control (both > 0).
     divergence_bound : float
         ``‖y‖₂`` above it ends a run as ``diverged``.
     max_steps : int
@@ -206,9 +206,9 @@ def _check(family, points, t_end, t_eval, rtol, atol, bound, max_steps, t0):
             raise InputError(f"{name}: expected a finite number, got {v!r}")
     if not t_end > t0:
         raise InputError(f"t_end: expected a number greater than t0 = {t0:g}, got {t_end!r}")
-    if not (rtol > 0 and atol >= 0 and bound > 0):
-        raise InputError(f"rtol, atol, divergence_bound: expected rtol > 0, atol ≥ 0, bound > 0, got "
-                         f"{rtol!r}, {atol!r}, {bound!r}")
+    if not (rtol > 0 and atol > 0 and bound > 0):
+        raise InputError(f"rtol, atol, divergence_bound: expected positive numbers (atol > 0: components that pass "
+                         f"through 0 need it), got {rtol!r}, {atol!r}, {bound!r}")
     if not (isinstance(max_steps, (int, np.integer)) and max_steps >= 1):
         raise InputError(f"max_steps: expected a whole number ≥ 1, got {max_steps!r}")
     te = np.ascontiguousarray(np.atleast_1d(np.asarray(t_eval, dtype=float)))

@@ -424,6 +424,13 @@ def _constant_history(history: Mapping[str, object], layout: dict, n_states: int
         if callable(h) and not isinstance(h, sympy.Basic):
             raise UnsupportedInput(f"history of {state}: the compiled family takes constant histories, got a "
                                    f"function; simulate a non-constant history with simulate()")
+        try:                                  # numbers and numeric arrays: no SymPy
+            x = np.asarray(h, dtype=float).ravel()
+        except (TypeError, ValueError):
+            x = None
+        if x is not None and x.size == dim and np.all(np.isfinite(x)):
+            x0[sl] = x
+            continue
         values = [h] if isinstance(h, (str, int, float, np.number, sympy.Expr)) else h
         try:
             values = [_parse(v, f"history of {state}", {}) if isinstance(v, str) else v

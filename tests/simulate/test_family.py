@@ -303,6 +303,10 @@ def test_bad_input(delay_family):
         fam.integrate([[1.0]], {"x": [1]}, t_end=1.0, t_eval=[2.0])
     with pytest.raises(InputError, match="t_end"):
         fam.integrate([[1.0]], {"x": [1]}, t_end=0.0, t_eval=[0.0])
+    with pytest.raises(InputError, match="positive numbers"):
+        fam.integrate([[1.0]], {"x": [1]}, t_end=1.0, t_eval=[1.0], atol=0.0)
+    with pytest.raises(InputError, match="max_steps"):
+        fam.integrate([[1.0]], {"x": [1]}, t_end=1.0, t_eval=[1.0], max_steps=0)
     with pytest.raises(InputError, match="positive finite lags"):
         fam.integrate([[1.0], [-1.0]], {"x": [1]}, t_end=1.0, t_eval=[1.0])
     with pytest.raises(InputError, match="history"):
