@@ -13,6 +13,8 @@ The pipeline is in the subpackages, one per stage (data flows one way):
     the same system integrated, experiments and envelope checks;
 :mod:`lkverify.linear`
     linear delay systems: spectra, stability intervals, LK LMI hierarchies with exact certificates;
+:mod:`lkverify.sweep`
+    gain sweeps on Dask: hypotheses, linear margin and simulation at every grid point, a table and a map;
 :mod:`lkverify.catalogue`
     items (theorems, checks, examples) and the loading of proof files;
 :mod:`lkverify.report` and :mod:`lkverify.cli`
@@ -45,9 +47,11 @@ from .catalogue.examples import Example
 from .certify.constants import ConstantsJob, Template
 from .linear import (LinearDelaySystem, certified_interval, certify_delay, linear_report, rightmost_roots,
                      stability_intervals)
-from .linear import linearise, linearise_at
+from .linear import linear_family, linearise, linearise_at
 from .simulate import (BoundedNotAttractive, Converges, DoesNotConverge, EnvelopeSpec, FasterThan, FromValues, Run,
                        Sensitive, Series, SmootherThan, StepControl)
+from .simulate.family import compile_family
+from .sweep import SweepOptions, SweepResult, sweep
 
 __all__ = [
     "Accuracy", "Block", "BoundClaim", "Budget", "QuadraticForms", "BudgetExceeded", "Check", "Deadline", "DerivativeClaim", "DerivativeResult",
@@ -65,7 +69,9 @@ __all__ = [
     # linear delay systems (linear)
     "LinearDelaySystem", "certified_interval", "certify_delay", "linear_report", "rightmost_roots",
     "stability_intervals",
-    "linearise", "linearise_at",
+    "linearise", "linearise_at", "linear_family",
+    # sweeps (simulate.family, sweep)
+    "compile_family", "SweepOptions", "SweepResult", "sweep",
 ]
 
 __version__ = "0.1.0"
