@@ -49,8 +49,7 @@ from .linear import (LinearDelaySystem, certified_interval, certify_delay, linea
                      stability_intervals)
 from .linear import linear_family, linearise, linearise_at
 from .simulate import (BoundedNotAttractive, Converges, DoesNotConverge, EnvelopeSpec, FasterThan, FromValues, Run,
-                       Sensitive, Series, SmootherThan, StepControl)
-from .simulate.family import compile_family
+                       Sensitive, Series, SmootherThan, StepControl, compile_family)
 from .sweep import SweepOptions, SweepResult, sweep
 
 __all__ = [

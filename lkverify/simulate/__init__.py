@@ -5,6 +5,9 @@
   output), :mod:`~lkverify.simulate.events` (breakpoints, divergence, the step floor) and
   :mod:`~lkverify.simulate.checks` (argument checks);
 * :mod:`~lkverify.simulate.compile` — :func:`compile_system`: the right-hand side generated from the System;
+* :mod:`~lkverify.simulate.family` — :func:`compile_family`: compiled once with the swept parameters as
+  runtime arguments (generated numba code), integrated many times by :mod:`~lkverify.simulate.batch`
+  (Dormand–Prince 5(4) in :mod:`~lkverify.simulate.dopri`, imported on first use);
 * :mod:`~lkverify.simulate.control` — :class:`StepControl`: tolerances and step limits;
 * :mod:`~lkverify.simulate.runs` — :func:`simulate` and the :class:`Trajectory`;
 * :mod:`~lkverify.simulate.experiments` — runs, plotted series and claims about runs;
@@ -14,6 +17,7 @@
 """
 
 from .compile import CompiledSystem, compile_system
+from .family import CompiledFamily, compile_family
 from .control import QUADRATURE_MAX_STEP, StepControl
 from .envelope import EnvelopeCheck, cross_check
 from .experiments import (BoundedNotAttractive, Converges, DoesNotConverge, EnvelopeSpec, FasterThan, FromValues, Run,
@@ -27,6 +31,6 @@ __all__ = [
     "BoundedNotAttractive", "CompiledSystem", "Converges", "DDESolution", "DenseHistory", "DoesNotConverge",
     "EnvelopeCheck", "EnvelopeSpec", "FasterThan", "MAX_STEPS", "Outcome", "PreparedRun", "QUADRATURE_MAX_STEP",
     "Run", "RunClaim", "RunSummary", "Sensitive", "Series", "SmootherThan", "StepControl", "Trajectory",
-    "compile_system", "cross_check", "prepare_run", "simulate", "solve_dde",
+    "compile_system", "CompiledFamily", "compile_family", "cross_check", "prepare_run", "simulate", "solve_dde",
     "DecaysAlgebraically", "LimitAboveFloor",
 ]

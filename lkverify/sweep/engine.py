@@ -244,6 +244,10 @@ def _run(plan, grid, chunks, todo, valid, options, finished, deadline, errors, t
                 continue
             finished(k, cols)
         return
+    if sim.family is not None:
+        # the integrator kernel is compiled once per machine (numba's disk cache): here, before the workers
+        # start, rather than by every worker at once on a first run (about 35 s each)
+        from ..simulate import dopri  # noqa: F401
     mark = time.monotonic()
     with _client(options) as client:
         timings["cluster start"] = time.monotonic() - mark
