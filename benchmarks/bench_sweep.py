@@ -13,7 +13,10 @@ compiled by numba on each worker, no chunk reused).  Printed:
   compute seconds;
 * simulated points per hour on 2 cores, from the 2-worker wall time (all overheads included)
   and from the compute seconds alone (steady state);
-* the speed-up of 2 workers over 1, from the wall times with and without the cluster start.
+* the speed-up of 2 workers over 1, from the wall times with and without the cluster start, and in
+  the steady state (points per second after every worker finished its first chunk, which carries
+  the worker's imports and JIT compilation: a fixed cost of a few seconds per worker);
+* whether the tables of 1 and 2 workers are identical (NaN equal to NaN).
 
 Not a test: numbers are printed, not asserted.  Needs the 2 cores idle to mean anything.
 """
@@ -21,6 +24,7 @@ Not a test: numbers are printed, not asserted.  Needs the 2 cores idle to mean a
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import platform
 import tempfile
@@ -32,12 +36,26 @@ from lkverify.sweep import SweepOptions, sweep
 
 def one(workers, args, folder):
     out = Path(folder) / f"w{workers}.parquet"
+    stamps = []
     start = time.monotonic()
     res = sweep("aleksandrov2023.fig1", grid=[f"b=-3:3:{args.b}", f"h=0.1:2:{args.h}"], sets=["F=diag(h,h,h)"],
                 out=out, options=SweepOptions(t_end=args.t_end, workers=workers, fresh=True,
-                                              chunk_size=args.chunk_size))
+                                              chunk_size=args.chunk_size),
+                progress=lambda done, total, sec: stamps.append((done, time.monotonic())))
     wall = time.monotonic() - start
-    return res, wall
+    # steady state: from the chunk that completes the workers' first round to the last chunk
+    (d0, t0), (d1, t1) = stamps[min(workers, len(stamps) - 1) - 1], stamps[-1]
+    steady = (d1 - d0) / (t1 - t0) if t1 > t0 else float("nan")
+    return res, wall, steady
+
+
+def same_tables(a, b) -> bool:
+    """Equal column by column, NaN equal to NaN (pyarrow's Table.equals says NaN != NaN)."""
+    def norm(v):
+        return "nan" if isinstance(v, float) and math.isnan(v) else v
+    return a.column_names == b.column_names and all(
+        [norm(v) for v in a.column(n).to_pylist()] == [norm(v) for v in b.column(n).to_pylist()]
+        for n in a.column_names)
 
 
 def main():
@@ -52,12 +70,12 @@ def main():
     rows = {}
     with tempfile.TemporaryDirectory() as folder:
         for w in (1, 2):
-            res, wall = one(w, args, folder)
+            res, wall, steady = one(w, args, folder)
             tm = res.timings
-            rows[w] = (res, wall, tm)
+            rows[w] = (res, wall, tm, steady)
             print(f"workers={w}: total {wall:.1f} s = plan {tm['plan']:.1f} + exact checks {tm['exact checks']:.2f} "
                   f"+ simulation {tm['simulation']:.1f} (cluster start {tm.get('cluster start', 0):.1f}); "
-                  f"classes {res.counts}")
+                  f"steady state {steady:.0f} points/s; classes {res.counts}")
     n = args.b * args.h
     s1 = rows[1][2]["simulation"]
     s2 = rows[2][2]["simulation"]
@@ -65,9 +83,10 @@ def main():
     c2 = s2 - rows[2][2].get("cluster start", 0)
     print(f"points per hour on 2 cores (2 workers, simulation phase incl. cluster start and JIT): {n / s2 * 3600:,.0f}")
     print(f"points per hour on 2 cores (2 workers, excl. cluster start): {n / c2 * 3600:,.0f}")
-    print(f"speed-up 2 workers / 1: {s1 / s2:.2f} (simulation phase), {c1 / c2:.2f} (excl. cluster start)")
-    same = rows[1][0].table.equals(rows[2][0].table)
-    print(f"tables of 1 and 2 workers identical: {same}")
+    print(f"points per hour on 2 cores (2 workers, steady state): {rows[2][3] * 3600:,.0f}")
+    print(f"speed-up 2 workers / 1: {s1 / s2:.2f} (simulation phase), {c1 / c2:.2f} (excl. cluster start), "
+          f"{rows[2][3] / rows[1][3]:.2f} (steady state, after each worker's first chunk: imports and JIT)")
+    print(f"tables of 1 and 2 workers identical: {same_tables(rows[1][0].table, rows[2][0].table)}")
 
 
 if __name__ == "__main__":

@@ -28,7 +28,6 @@ import json
 import logging
 import math
 import os
-import sys
 import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -38,12 +37,14 @@ import numpy as np
 from ..errors import InputError
 from .evaluate import CLASSES, run_chunk
 from .grid import Grid
-from .plan import Plan, PointChecks, build_plan, holds
+from .plan import Plan, PointChecks, build_plan, holds, sub_grids
 
 __all__ = ["SweepOptions", "SweepResult", "sweep", "DEFAULT_CHUNK_SIZE"]
 
 #: points per task: large enough that Dask's per-task overhead (a few ms) stays below 1 % of a chunk
 DEFAULT_CHUNK_SIZE = 64
+#: how long a sweep on a given scheduler waits for its first worker before saying there is none
+WORKER_WAIT_SECONDS = 30.0
 
 
 @dataclasses.dataclass(frozen=True)
@@ -206,26 +207,32 @@ def sweep(item, *, grid: Sequence[str] | Grid, sets: Sequence[str] = (), out, op
 
 
 def _exact_columns(plan: Plan, grid: Grid) -> dict:
-    """valid / invalid_reason and, per theorem, applies + margins: exact, on the client."""
+    """valid / invalid_reason and, per theorem, applies + margins: exact, on the client, each check on its sub-grid."""
     checks = PointChecks(plan)
-    n = grid.size
-    valid = np.zeros(n, dtype=bool)
-    reason = np.empty(n, dtype=object)
+    shape = grid.shape
+    reason = np.full(shape, "", dtype=object)
+    for name, deps in checks.depends.items():
+        for idx, point in sub_grids(grid, deps):
+            why = checks.reason(name, point)
+            block = reason[idx]
+            if why and isinstance(block, np.ndarray):       # the first reason found is kept
+                block[block == ""] = why
+            elif why and block == "":
+                reason[idx] = why
+    valid = reason == ""
     cols = {}
     for th in plan.theorems:
-        cols[f"applies:{th.short}"] = np.zeros(n, dtype=bool)
-        for k in range(len(th.hypotheses)):
-            cols[f"margin:{th.short}:{k}"] = np.full(n, np.nan)
-    for i in range(n):
-        values = plan.values_at(grid.point(i))
-        why = checks.validity(values)
-        valid[i], reason[i] = not why, why
-        for th in plan.theorems:
-            res = checks.hypotheses(th, values) if not why else []
-            cols[f"applies:{th.short}"][i] = bool(res) and all(holds(s) for s, _ in res)
-            for k, (_, m) in enumerate(res):
-                cols[f"margin:{th.short}:{k}"][i] = m
-    return {"valid": valid, "invalid_reason": reason, **cols}
+        applies = valid.copy()
+        for k, h in enumerate(th.hypotheses):
+            margin = np.full(shape, np.nan)
+            ok = np.zeros(shape, dtype=bool)
+            for idx, point in sub_grids(grid, checks.hypothesis_names(h)):
+                status, m = checks.hypothesis(h, point)
+                margin[idx], ok[idx] = m, holds(status)
+            applies &= ok
+            cols[f"margin:{th.short}:{k}"] = np.where(valid, margin, np.nan).ravel()
+        cols[f"applies:{th.short}"] = applies.ravel()
+    return {"valid": valid.ravel(), "invalid_reason": reason.ravel(), **cols}
 
 
 # -- running the chunks ------------------------------------------------------------------------------
@@ -295,6 +302,13 @@ class _client:
                              f"{str(exc).splitlines()[0] if str(exc) else 'no answer'}); expected the address of a "
                              f"running scheduler such as tcp://127.0.0.1:8786 (start one with `dask scheduler`), or "
                              f"omit --scheduler for a local cluster") from None
+        try:
+            self.client.wait_for_workers(1, timeout=WORKER_WAIT_SECONDS)
+        except (OSError, TimeoutError):
+            self.client.close()
+            raise InputError(f"--scheduler {address}: the scheduler has no workers (none joined in "
+                             f"{WORKER_WAIT_SECONDS:g} s); expected a cluster with workers: start some with "
+                             f"`dask worker {address}`") from None
         return self.client
 
     def __exit__(self, *exc):

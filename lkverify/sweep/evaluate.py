@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import dataclasses
 import time
-from collections.abc import Callable, Mapping
+from collections.abc import Callable
 
 import numpy as np
 
@@ -149,7 +149,7 @@ def _slow(sim, pts, idx, cols) -> None:
         try:
             tr = simulate(sim.system, history=sim.history, t_end=sim.t_end, values=values, t_eval=sim.t_eval,
                           step=StepControl(rtol=sim.rtol, atol=sim.atol), divergence_bound=sim.divergence_bound)
-        except InputError as exc:
+        except InputError:
             cols["outcome"][j], cols["simulated"][j] = "", "invalid"
             cols["t_fail"][j] = np.nan
             continue

@@ -100,7 +100,7 @@ def build_plan(item, *, grid: Grid, sets: Sequence[str] = (), t_end: float | Non
     """
     example = load_example(item) if isinstance(item, str) else item
     run = example.runs[0]
-    system, P = run.system, run.system.parameters
+    P = run.system.parameters
     names = grid.names
     symbols = {n: sympy.Symbol(n) for n in names}
     given, texts = _parse_sets(sets, symbols, P)
@@ -219,49 +219,71 @@ def _theorems(example) -> tuple:
 
 
 class PointChecks:
-    """Parameter validity and theorem hypotheses per point, exact, cached by the values they depend on."""
+    """Parameter validity and theorem hypotheses, exact, each on the sub-grid of the names it depends on.
+
+    A swept parameter depends on some of the grid's names (F = diag(h,h,h) on h alone); a
+    hypothesis on the names of the parameters it contains.  Each is decided once per point
+    of its own sub-grid and broadcast to the whole grid, so the exact work grows with the
+    number of distinct values, not with the number of points.
+    """
 
     def __init__(self, plan: Plan):
         self.plan = plan
         self.P = plan.parameters
-        self._valid: dict = {}
-        self._hyp: dict = {}
         depends = {k: {str(s) for s in _free(v)} for k, v in plan.templates.items()}
         depends.update({k: {k} for k in plan.swept_parameters})
         self.depends = depends          # parameter → swept names it depends on
-        everything = self.P.resolve(plan.fixed, use_defaults=True)
-        self.base = dict(everything)
+        self.base = dict(self.P.resolve(plan.fixed, use_defaults=True))
 
-    def validity(self, values: Mapping) -> str:
-        """'' when every swept parameter is admissible at these values, else the reason (one line)."""
-        for name in self.depends:
-            key = (name, _key(values[name]))
-            if key not in self._valid:
-                try:
-                    self.P.resolve({name: values[name]}, use_defaults=False)
-                    self._valid[key] = ""
-                except InputError as exc:
-                    self._valid[key] = str(exc)
-            if self._valid[key]:
-                return self._valid[key]
-        return ""
+    def value(self, name: str, point: Mapping):
+        """The exact value of a swept parameter at a (sub-)grid point."""
+        if name in self.plan.templates:
+            return self.plan.templates[name].xreplace({sympy.Symbol(k): v for k, v in point.items()})
+        return point[name]
 
-    def hypotheses(self, th: TheoremChecks, values: Mapping) -> list:
-        """[(status, margin float)] of the theorem's hypotheses at the values."""
-        full = {**self.base, **values}
-        sub = None
-        out = []
-        for k, h in enumerate(th.hypotheses):
-            names = _hypothesis_names(h)
-            names = set(self.depends) if "*" in names else names & set(self.depends)
-            key = (th.name, k, tuple((n, _key(full[n])) for n in sorted(names)))
-            if key not in self._hyp:
-                if sub is None:
-                    sub = self.P.substitution(full)
-                res = h.evaluate(sub)
-                self._hyp[key] = (res.status, _float(res.value))
-            out.append(self._hyp[key])
-        return out
+    def reason(self, name: str, point: Mapping) -> str:
+        """'' when the parameter's own hypotheses hold at the point, else why not (one line)."""
+        try:
+            self.P.resolve({name: self.value(name, point)}, use_defaults=False)
+            return ""
+        except InputError as exc:
+            return str(exc)
+
+    def hypothesis_names(self, h) -> set:
+        """The grid names a hypothesis depends on (through the parameters in it)."""
+        params = _hypothesis_names(h)
+        params = set(self.depends) if "*" in params else params & set(self.depends)
+        return set().union(*[self.depends[p] for p in params]) if params else set()
+
+    def hypothesis(self, h, point: Mapping) -> tuple:
+        """(status, margin float) of a hypothesis at a sub-grid point; NaN margin where a value is invalid."""
+        values = {p: self.value(p, point) for p, deps in self.depends.items() if deps <= set(point)}
+        if any(self.reason(p, point) for p in values):
+            return Status.UNDECIDED, float("nan")
+        try:
+            res = h.evaluate(self.P.substitution({**self.base, **values}))
+        except InputError:
+            return Status.UNDECIDED, float("nan")
+        return res.status, _float(res.value)
+
+
+def sub_grids(grid: Grid, names: set):
+    """(index tuple into the full grid shape, point) for every point of the sub-grid of ``names``.
+
+    The index has a slice for every axis not in ``names`` (broadcast over it).
+
+    >>> g = Grid.parse(["b=0:1:2", "h=1:2:2"])
+    >>> [(idx, pt) for idx, pt in sub_grids(g, {"h"})]
+    [((slice(None, None, None), 0), {'h': 1}), ((slice(None, None, None), 1), {'h': 2})]
+    """
+    axes = [i for i, a in enumerate(grid.axes) if a.name in names]
+    for sub in np.ndindex(*[grid.shape[i] for i in axes]):
+        idx = [slice(None)] * len(grid.axes)
+        point = {}
+        for i, j in zip(axes, sub):
+            idx[i] = j
+            point[grid.axes[i].name] = grid.axes[i].values[j]
+        yield tuple(idx), point
 
 
 def _hypothesis_names(h) -> set:
@@ -271,10 +293,6 @@ def _hypothesis_names(h) -> set:
         if isinstance(v, sympy.Basic):
             names |= {str(s) for s in v.free_symbols}
     return names if names or dataclasses.is_dataclass(h) else {"*"}
-
-
-def _key(v):
-    return sympy.srepr(v) if isinstance(v, sympy.Basic) else repr(v)
 
 
 def _float(v) -> float:

@@ -23,7 +23,8 @@ SLOW = ("lkverify simulate", "lkverify report", "lkverify constants aleksandrov2
         "lkverify constants aleksandrov2017.lemma1 --plot", "lkverify check aleksandrov2026.theorem1",
         "lkverify check aleksandrov2026.remark1", "lkverify constants aleksandrov2026.remark1",
         "lkverify check aleksandrov2023.theorem", "lkverify check aleksandrov2017.theorem1",
-        'lkverify linear --set "A=[[-2,0],[0,-0.9]]" --set "Ad=[[-1,0],[-1,-1]]" --plot', "lkverify constants somov")
+        'lkverify linear --set "A=[[-2,0],[0,-0.9]]" --set "Ad=[[-1,0],[-1,-1]]" --plot', "lkverify constants somov",
+        "lkverify sweep")
 
 
 def _console_lines():

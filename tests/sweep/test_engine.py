@@ -89,6 +89,21 @@ def test_two_worker_local_cluster_equals_serial(serial, tmp_path):
     assert columns(par.table, names) == columns(serial.table, names)
 
 
+def test_existing_scheduler_with_and_without_workers(serial, tmp_path, monkeypatch):
+    from distributed import LocalCluster
+
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        res = sweep(toy(), grid=["a=0.25:2.5:10"], out=tmp_path / "ext.parquet",
+                    options=SweepOptions(scheduler=cluster.scheduler_address, chunk_size=4))
+    names = serial.table.column_names
+    assert res.complete and columns(res.table, names) == columns(serial.table, names)
+    monkeypatch.setattr(engine_module, "WORKER_WAIT_SECONDS", 1.0)
+    with LocalCluster(n_workers=0, processes=False, dashboard_address=None) as empty:
+        with pytest.raises(InputError, match="no workers"):
+            sweep(toy(), grid=["a=0.5:1:2"], out=tmp_path / "none.parquet",
+                  options=SweepOptions(scheduler=empty.scheduler_address))
+
+
 def test_resume_reuses_finished_chunks(tmp_path, monkeypatch):
     real = engine_module.run_chunk
     calls = []
