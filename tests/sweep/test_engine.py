@@ -184,3 +184,25 @@ def test_plan_values_at_substitutes_templates():
     plan = build_plan(toy(), grid=Grid.parse(["a=1:2:2"]), sets=[])
     assert plan.values_at({"a": 2})["a"] == 2 and plan.swept_parameters == ("a",)
     assert grid.size == 3
+
+
+def memory_toy():
+    """x' = −a x − ∫_0^t x(ξ)/(1 + t − ξ)³ dξ: a general (non-exponential) kernel, quadrature only."""
+    from lkverify import memory_integral, xi
+
+    P = Parameters()
+    a = P.scalar("a", positive=True, default=1)
+    x = Vector("x", 1)
+    system = System([Equation(x, [Term(-a * x(t)[0] - memory_integral(x(xi)[0] / (1 + t - xi) ** 3))])],
+                    parameters=P, name="memory toy")
+    return Example("user.memory", runs=[Run("x ≡ 1", system, {"a": "1"}, {"x": [1]})], t_end=6.0,
+                   series=[Series("x", lambda S: S["x"][:, 0])], distance=distance)
+
+
+def test_a_system_the_fast_path_does_not_take_runs_point_by_point(tmp_path):
+    res = sweep(memory_toy(), grid=["a=1:3:2"], out=tmp_path / "m.parquet",
+                options=SweepOptions(scheduler="synchronous", samples=61))
+    assert "point by point" in res.meta["simulation"] or "on its own" in res.meta["simulation"]
+    assert res.table.column("simulated").to_pylist() == ["converged", "converged"]
+    assert res.table.column("linear_verdict").to_pylist() == ["", ""]       # no equilibrium declared
+    assert "no equilibrium" in res.meta["linear"]
