@@ -16,7 +16,10 @@ compiled by numba on each worker, no chunk reused).  Printed:
 * the speed-up of 2 workers over 1, from the wall times with and without the cluster start, and in
   the steady state (points per second after every worker finished its first chunk, which carries
   the worker's imports and JIT compilation: a fixed cost of a few seconds per worker);
-* whether the tables of 1 and 2 workers are identical (NaN equal to NaN).
+* whether the tables of 1 and 2 workers are identical (NaN equal to NaN);
+* the same sweep on an existing (warm) LocalCluster of 1 and of 2 workers, after a small warm-up sweep
+  on it: what a user with a running cluster (``--scheduler``) sees, and the speed-up of the
+  parallel part.
 
 Not a test: numbers are printed, not asserted.  Needs the 2 cores idle to mean anything.
 """
@@ -49,6 +52,20 @@ def one(workers, args, folder):
     return res, wall, steady
 
 
+def warm(workers, args, folder):
+    """The same sweep on an existing LocalCluster whose workers already ran a small sweep (imports, JIT done)."""
+    from distributed import LocalCluster
+
+    grid = [f"b=-3:3:{args.b}", f"h=0.1:2:{args.h}"]
+    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        opts = dict(t_end=args.t_end, scheduler=cluster.scheduler_address, fresh=True, chunk_size=args.chunk_size)
+        sweep("aleksandrov2023.fig1", grid=["b=-3:3:4", "h=0.1:2:8"], sets=["F=diag(h,h,h)"],
+              out=Path(folder) / "warm-up.parquet", options=SweepOptions(**{**opts, "chunk_size": 4}))
+        res = sweep("aleksandrov2023.fig1", grid=grid, sets=["F=diag(h,h,h)"], out=Path(folder) / f"warm{workers}.parquet",
+                    options=SweepOptions(**opts))
+    return res
+
+
 def same_tables(a, b) -> bool:
     """Equal column by column, NaN equal to NaN (pyarrow's Table.equals says NaN != NaN)."""
     def norm(v):
@@ -64,6 +81,7 @@ def main():
     ap.add_argument("--b", type=int, default=31)
     ap.add_argument("--h", type=int, default=20)
     ap.add_argument("--chunk-size", type=int, default=64)
+    ap.add_argument("--no-warm", action="store_true", help="skip the runs on a warm existing cluster")
     args = ap.parse_args()
     print(f"machine: {platform.processor() or platform.machine()}, {os.cpu_count()} cores; t_end = {args.t_end:g}, "
           f"grid {args.b} × {args.h} = {args.b * args.h} points, chunks of {args.chunk_size}")
@@ -87,6 +105,14 @@ def main():
     print(f"speed-up 2 workers / 1: {s1 / s2:.2f} (simulation phase), {c1 / c2:.2f} (excl. cluster start), "
           f"{rows[2][3] / rows[1][3]:.2f} (steady state, after each worker's first chunk: imports and JIT)")
     print(f"tables of 1 and 2 workers identical: {same_tables(rows[1][0].table, rows[2][0].table)}")
+    if args.no_warm:
+        return
+    with tempfile.TemporaryDirectory() as folder:
+        w1, w2 = warm(1, args, folder), warm(2, args, folder)
+    t1, t2 = w1.timings["simulation"], w2.timings["simulation"]
+    print(f"warm cluster (an existing cluster, workers already past imports and JIT): simulation phase 1 worker "
+          f"{t1:.1f} s, 2 workers {t2:.1f} s; speed-up {t1 / t2:.2f}; {n / t2 * 3600:,.0f} points per hour on 2 cores; "
+          f"tables identical: {same_tables(w1.table, w2.table)}")
 
 
 if __name__ == "__main__":
