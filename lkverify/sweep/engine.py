@@ -162,6 +162,28 @@ def sweep(item, *, grid: Sequence[str] | Grid, sets: Sequence[str] = (), out, op
     ------
     InputError
         Bad item, names, values, grid, output path or scheduler address (nothing computed).
+
+    Notes
+    -----
+    The default LocalCluster starts its workers as new Python processes (Dask's ``spawn``):
+    a script that calls :func:`sweep` must do so under ``if __name__ == "__main__":``, as
+    for any Dask cluster started from a script (``lkverify sweep`` does not need it).
+
+    Examples
+    --------
+    In this process (no cluster), x' = −a x(t − 1) over a: stable iff a < π/2 (a = 1.5 decays too
+    slowly to reach 1e-2 by t = 60; a = 2 grows, but stays below the divergence bound 1e6 by then).
+
+    >>> import tempfile, pathlib
+    >>> from lkverify import Equation, Example, Parameters, Run, Series, System, Term, Vector, t
+    >>> P = Parameters(); a = P.scalar("a", positive=True, default=1); tau = P.delay("tau", default=1)
+    >>> x = Vector("x", 1); system = System([Equation(x, [Term(-a * x(t - tau)[0])])], parameters=P)
+    >>> ex = Example("user.decay", runs=[Run("x ≡ 1", system, {}, {"x": [1]})], t_end=60,
+    ...              series=[Series("x", lambda S: S["x"][:, 0])], distance=lambda S: abs(S["x"][:, 0]))
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "decay.parquet"
+    >>> res = sweep(ex, grid=["a=0.5:2:4"], out=out, options=SweepOptions(scheduler="synchronous"))
+    >>> res.table.column("simulated").to_pylist()
+    ['converged', 'converged', 'bounded', 'bounded']
     """
     start = time.monotonic()
     grid = grid if isinstance(grid, Grid) else Grid.parse(grid)
