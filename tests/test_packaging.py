@@ -51,7 +51,7 @@ def test_every_public_name_has_a_doctest_example():
     missing = []
     for module in ("lkverify", "lkverify.declare", "lkverify.symbolic", "lkverify.certify", "lkverify.certify.steps",
                    "lkverify.certify.intervals", "lkverify.simulate", "lkverify.catalogue", "lkverify.report",
-                   "lkverify.linear"):
+                   "lkverify.linear", "lkverify.sweep"):
         mod = importlib.import_module(module)
         for name in mod.__all__:
             obj = getattr(mod, name)

@@ -73,6 +73,15 @@ class SweepOptions:
         Seconds for the whole sweep; unfinished chunks are then undecided.
     fresh : bool
         Discard finished chunks of an earlier run of this sweep instead of reusing them.
+
+    Examples
+    --------
+    >>> SweepOptions(workers=2).chunk_size, SweepOptions(scheduler="synchronous").scheduler
+    (64, 'synchronous')
+    >>> SweepOptions(chunk_size=0)
+    Traceback (most recent call last):
+        ...
+    lkverify.errors.InputError: --chunk-size: expected a whole number ≥ 1, got 0
     """
 
     t_end: float | None = None
@@ -125,6 +134,19 @@ class SweepResult:
         Seconds spent building the plan (SymPy, once), on the exact checks, and running the chunks
         (``simulation``: cluster start, compilation on the workers and the simulations; ``cluster
         start`` alone).
+
+    Examples
+    --------
+    >>> from lkverify import Equation, Example, Parameters, Run, Series, System, Term, Vector, t
+    >>> P = Parameters(); a = P.scalar("a", positive=True, default=1); tau = P.delay("tau", default=1)
+    >>> x = Vector("x", 1); system = System([Equation(x, [Term(-a * x(t - tau)[0])])], parameters=P)
+    >>> ex = Example("user.decay", runs=[Run("x ≡ 1", system, {}, {"x": [1]})], t_end=30,
+    ...              series=[Series("x", lambda S: S["x"][:, 0])], distance=lambda S: abs(S["x"][:, 0]))
+    >>> import pathlib, tempfile
+    >>> res = sweep(ex, grid=["a=0.5:1:2"], out=pathlib.Path(tempfile.mkdtemp()) / "s.parquet",
+    ...             options=SweepOptions(scheduler="synchronous"))
+    >>> res.complete, res.counts["converged"], res.table.num_rows, res.path.suffix
+    (True, 2, 2, '.parquet')
     """
 
     item: str

@@ -98,6 +98,24 @@ def plot_map(table, meta: Mapping, path, *, title: str | None = None) -> None:
     InputError
         More than 2 axes (the table is kept, the map needs 1 or 2), no axis, or a table
         without the columns the map needs.
+
+    Examples
+    --------
+    A 1-D strip (one swept name):
+
+    >>> import pathlib, tempfile
+    >>> import numpy as np
+    >>> a = np.array([0.5, 1.0, 2.0])
+    >>> table = {"point": np.arange(3), "a": a, "valid": np.ones(3, bool), "invalid_reason": [""] * 3,
+    ...          "simulated": ["converged", "converged", "bounded"], "linear_abscissa": a - 1.5,
+    ...          "linear_verdict": ["stable", "stable", "unstable"], "t_to_1e-2": np.array([9.0, 40.0, np.nan]),
+    ...          "final_distance": np.array([1e-4, 1e-3, 0.5])}
+    >>> meta = {"item": "demo.decay", "t_end": 60, "theorems": {}, "marks": [],
+    ...         "grid": [{"name": "a", "start": "1/2", "stop": "2", "n": 3}]}
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "strip.png"
+    >>> plot_map(table, meta, path)
+    >>> path.stat().st_size > 5_000
+    True
     """
     from matplotlib.figure import Figure  # no pyplot: the backend (and a notebook's) is left alone
 

@@ -87,6 +87,12 @@ class Grid:
     ------
     InputError
         No axis, a name swept twice, or more than :data:`MAX_POINTS` points.
+
+    Examples
+    --------
+    >>> g = Grid.parse(["a=0:1:3", "b=1:2:2"])
+    >>> g.size, g.point(5)
+    (6, {'a': 1, 'b': 2})
     """
 
     axes: tuple

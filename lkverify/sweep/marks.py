@@ -68,6 +68,13 @@ class Mark:
         ``"converges"``, ``"does not converge"`` (the example's claims on the run) or ``""``.
     run : Run
         The catalogued run (system, exact values, history): simulate it for the observed class.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> m = Mark("Fig. 1", "aleksandrov2023.fig1", {"b": sympy.Integer(2), "h": sympy.Rational(7, 10)}, "converges")
+    >>> m.floats(), m.to_meta()["expected"]
+    ({'b': 2.0, 'h': 0.7}, 'converges')
     """
 
     label: str
@@ -116,6 +123,15 @@ def paper_marks(example, grid_names: Sequence[str], templates: Mapping, *, fixed
     InputError
         ``grid_names`` empty, a template key that is not a parameter, or fixed values that
         are not admissible.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify.sweep import load_example
+    >>> h = sympy.Symbol("h")
+    >>> marks = paper_marks(load_example("aleksandrov2023.fig1"), ("b", "h"), {"F": sympy.diag(h, h, h)})
+    >>> [(m.label, m.coords, m.expected) for m in marks]
+    [('Fig. 1', {'b': 2, 'h': 7/10}, 'converges'), ('Fig. 2', {'b': -2, 'h': 7/10}, 'does not converge')]
     """
     names = tuple(grid_names)
     if not names:

@@ -42,7 +42,19 @@ class TheoremChecks:
 
 @dataclasses.dataclass(frozen=True)
 class Plan:
-    """Everything a sweep needs, resolved and compiled once (see the module docstring)."""
+    """Everything a sweep needs, resolved and compiled once (see the module docstring).
+
+    Examples
+    --------
+    >>> from lkverify import Equation, Example, Parameters, Run, Series, System, Term, Vector, t
+    >>> P = Parameters(); a = P.scalar("a", positive=True, default=1); tau = P.delay("tau", default=1)
+    >>> x = Vector("x", 1); system = System([Equation(x, [Term(-a * x(t - tau)[0])])], parameters=P)
+    >>> ex = Example("user.decay", runs=[Run("x ≡ 1", system, {}, {"x": [1]})], t_end=30,
+    ...              series=[Series("x", lambda S: S["x"][:, 0])], distance=lambda S: abs(S["x"][:, 0]))
+    >>> plan = build_plan(ex, grid=Grid.parse(["a=1:2:2"]))
+    >>> plan.swept_parameters, plan.values_at({"a": 2})["a"], plan.theorems
+    (('a',), 2, ())
+    """
 
     item: str
     example: object
@@ -70,7 +82,17 @@ class Plan:
 
 
 def load_example(item: str):
-    """The catalogued example ``item`` (one run), or InputError saying what came instead."""
+    """The catalogued example ``item`` (one run), or InputError saying what came instead.
+
+    Examples
+    --------
+    >>> load_example("aleksandrov2023.fig1").runs[0].values["b"]
+    '2'
+    >>> load_example("aleksandrov2023.theorem3")
+    Traceback (most recent call last):
+        ...
+    lkverify.errors.InputError: sweep: expected one example (a numerical figure whose run is simulated), got aleksandrov2023.theorem3 (theorem); e.g. lkverify sweep aleksandrov2023.fig1 --grid b=-3:3:61
+    """
     from ..catalogue.examples import Example
     from ..catalogue.loader import find_items
 
@@ -97,6 +119,14 @@ def build_plan(item, *, grid: Grid, sets: Sequence[str] = (), t_end: float | Non
     InputError
         An unknown item or name, a swept name neither a parameter nor used by a ``--set``
         template, a fixed value outside the parameter's hypotheses, a bad ``--t-end``.
+
+    Examples
+    --------
+    A matrix swept through a scalar (paper 002's F = h·I):
+
+    >>> plan = build_plan("aleksandrov2023.fig1", grid=Grid.parse(["h=0.5:1:2"]), sets=["F=diag(h,h,h)"])
+    >>> plan.templates["F"][0, 0], plan.values_at({"h": 1})["F"][2, 2], [th.short for th in plan.theorems]
+    (h, 1, ['theorem3'])
     """
     example = load_example(item) if isinstance(item, str) else item
     run = example.runs[0]
