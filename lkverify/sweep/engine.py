@@ -137,16 +137,11 @@ class SweepResult:
 
     Examples
     --------
-    >>> from lkverify import Equation, Example, Parameters, Run, Series, System, Term, Vector, t
-    >>> P = Parameters(); a = P.scalar("a", positive=True, default=1); tau = P.delay("tau", default=1)
-    >>> x = Vector("x", 1); system = System([Equation(x, [Term(-a * x(t - tau)[0])])], parameters=P)
-    >>> ex = Example("user.decay", runs=[Run("x ≡ 1", system, {}, {"x": [1]})], t_end=30,
-    ...              series=[Series("x", lambda S: S["x"][:, 0])], distance=lambda S: abs(S["x"][:, 0]))
     >>> import pathlib, tempfile
-    >>> res = sweep(ex, grid=["a=0.5:1:2"], out=pathlib.Path(tempfile.mkdtemp()) / "s.parquet",
+    >>> res = sweep("aleksandrov2023.fig1", grid=["b=-2:2:2"], out=pathlib.Path(tempfile.mkdtemp()) / "s.parquet",
     ...             options=SweepOptions(scheduler="synchronous"))
-    >>> res.complete, res.counts["converged"], res.table.num_rows, res.path.suffix
-    (True, 2, 2, '.parquet')
+    >>> res.complete, res.counts["converged"], res.counts["bounded"], res.path.suffix
+    (True, 1, 1, '.parquet')
     """
 
     item: str

@@ -41,15 +41,10 @@ class Simulation:
 
     Examples
     --------
-    >>> from lkverify import Equation, Example, Parameters, Run, Series, System, Term, Vector, t
-    >>> P = Parameters(); a = P.scalar("a", positive=True, default=1); tau = P.delay("tau", default=1)
-    >>> x = Vector("x", 1); system = System([Equation(x, [Term(-a * x(t - tau)[0])])], parameters=P)
-    >>> ex = Example("user.decay", runs=[Run("x ≡ 1", system, {}, {"x": [1]})], t_end=30,
-    ...              series=[Series("x", lambda S: S["x"][:, 0])], distance=lambda S: abs(S["x"][:, 0]))
     >>> from lkverify.sweep import Grid, build_plan
-    >>> sim = build_plan(ex, grid=Grid.parse(["a=1:2:2"])).simulation
-    >>> sim.names, sim.t_end, sim.family is not None
-    (('a',), 30.0, True)
+    >>> sim = build_plan("aleksandrov2023.fig1", grid=Grid.parse(["b=-2:2:2"])).simulation
+    >>> sim.names, sim.t_end, sim.family is not None, sim.linear is not None
+    (('b',), 100.0, True, True)
     """
 
     family: object               # CompiledFamily, or None for the slow path
@@ -107,16 +102,13 @@ def run_chunk(sim: Simulation, points: np.ndarray, valid: np.ndarray) -> dict:
 
     Examples
     --------
-    >>> from lkverify import Equation, Example, Parameters, Run, Series, System, Term, Vector, t
-    >>> P = Parameters(); a = P.scalar("a", positive=True, default=1); tau = P.delay("tau", default=1)
-    >>> x = Vector("x", 1); system = System([Equation(x, [Term(-a * x(t - tau)[0])])], parameters=P)
-    >>> ex = Example("user.decay", runs=[Run("x ≡ 1", system, {}, {"x": [1]})], t_end=30,
-    ...              series=[Series("x", lambda S: S["x"][:, 0])], distance=lambda S: abs(S["x"][:, 0]))
+    Figs. 2 and 1 of paper 002 (b = −2, 2):
+
     >>> from lkverify.sweep import Grid, build_plan
-    >>> sim = build_plan(ex, grid=Grid.parse(["a=1:2:2"])).simulation
-    >>> cols = run_chunk(sim, np.array([[1.0], [5.0]]), np.array([True, True]))      # a = 5: aτ > π/2, grows
-    >>> cols["simulated"].tolist(), cols["outcome"].tolist()
-    (['converged', 'diverged'], ['success', 'diverged'])
+    >>> sim = build_plan("aleksandrov2023.fig1", grid=Grid.parse(["b=-2:2:2"])).simulation
+    >>> cols = run_chunk(sim, np.array([[-2.0], [2.0]]), np.array([True, True]))
+    >>> cols["simulated"].tolist(), cols["linear_verdict"].tolist()
+    (['bounded', 'converged'], ['unstable', 'stable'])
     """
     start = time.monotonic()
     points = np.asarray(points, dtype=float).reshape(len(valid), len(sim.names))

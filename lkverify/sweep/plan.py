@@ -46,14 +46,9 @@ class Plan:
 
     Examples
     --------
-    >>> from lkverify import Equation, Example, Parameters, Run, Series, System, Term, Vector, t
-    >>> P = Parameters(); a = P.scalar("a", positive=True, default=1); tau = P.delay("tau", default=1)
-    >>> x = Vector("x", 1); system = System([Equation(x, [Term(-a * x(t - tau)[0])])], parameters=P)
-    >>> ex = Example("user.decay", runs=[Run("x ≡ 1", system, {}, {"x": [1]})], t_end=30,
-    ...              series=[Series("x", lambda S: S["x"][:, 0])], distance=lambda S: abs(S["x"][:, 0]))
-    >>> plan = build_plan(ex, grid=Grid.parse(["a=1:2:2"]))
-    >>> plan.swept_parameters, plan.values_at({"a": 2})["a"], plan.theorems
-    (('a',), 2, ())
+    >>> plan = build_plan("aleksandrov2023.fig1", grid=Grid.parse(["b=-2:2:2"]))
+    >>> plan.swept_parameters, plan.values_at({"b": 2})["tau"], plan.fixed["F"][0, 0]
+    (('b',), 9/10, 7/10)
     """
 
     item: str
