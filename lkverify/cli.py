@@ -343,6 +343,13 @@ def check_output_path(path: str, *, option: str = "--plot") -> Path:
         raise InputError(f"{option}: the folder {parent} is not writable; expected a folder you can write to")
     if p.exists() and not os.access(p, os.W_OK):
         raise InputError(f"{option}: {path} exists and is not writable; expected a writable file")
+    probe = parent / f".{p.name}.probe"
+    try:                                  # permissions are not all: /proc, a read-only mount, a full disk
+        probe.write_bytes(b"")
+        probe.unlink()
+    except OSError as exc:
+        raise InputError(f"{option}: cannot write in the folder {parent} ({exc.strerror or exc}); expected a "
+                         f"folder you can write to") from None
     return p
 
 

@@ -18,7 +18,7 @@ import numpy as np
 from ..errors import InputError
 from ..report.results import Report, Result
 from ..status import Status
-from .engine import DEFAULT_CHUNK_SIZE, SweepOptions, SweepResult, sweep
+from .engine import DEFAULT_CHUNK_SIZE, SweepOptions, SweepResult, check_table_path, sweep
 from .evaluate import CLASSES, run_chunk
 
 __all__ = ["add_parser", "run"]
@@ -64,7 +64,7 @@ def run(args, *, check_output_path, emit) -> int:
         raise InputError(f"--t-end: expected a positive finite number, got {args.t_end}")
     if args.max_steps is not None and args.max_steps < 1:
         raise InputError(f"--max-steps: expected a whole number ≥ 1, got {args.max_steps}")
-    out = Path(args.out or f"sweep-{args.item.replace('/', '_').replace('::', '.')}.parquet")
+    out = check_table_path(args.out or f"sweep-{Path(args.item).name.replace('::', '.')}.parquet")
     plot = args.plot or str(out.with_suffix(".png"))
     check_output_path(plot)
     options = SweepOptions(t_end=args.t_end, chunk_size=args.chunk_size, scheduler=args.scheduler,

@@ -45,6 +45,8 @@ __all__ = ["SweepOptions", "SweepResult", "sweep", "DEFAULT_CHUNK_SIZE"]
 DEFAULT_CHUNK_SIZE = 64
 #: how long a sweep on a given scheduler waits for its first worker before saying there is none
 WORKER_WAIT_SECONDS = 30.0
+#: how long it tries to reach a given scheduler before saying it cannot
+SCHEDULER_TIMEOUT_SECONDS = 10.0
 
 
 @dataclasses.dataclass(frozen=True)
@@ -204,7 +206,7 @@ def sweep(item, *, grid: Sequence[str] | Grid, sets: Sequence[str] = (), out, op
     """
     start = time.monotonic()
     grid = grid if isinstance(grid, Grid) else Grid.parse(grid)
-    out = _output_path(out)
+    out = check_table_path(out)
     plan = build_plan(item, grid=grid, sets=sets, t_end=options.t_end, samples=options.samples, rtol=options.rtol,
                       atol=options.atol, level=options.level, max_steps=options.max_steps)
     timings = {"plan": time.monotonic() - start}
@@ -335,7 +337,7 @@ class _client:
             self.client = Client(self.cluster)
             return self.client
         try:
-            self.client = Client(address, timeout="10s")
+            self.client = Client(address, timeout=f"{SCHEDULER_TIMEOUT_SECONDS:g}s")
         except (OSError, TimeoutError, ValueError) as exc:
             raise InputError(f"--scheduler {address}: cannot reach a Dask scheduler there ({type(exc).__name__}: "
                              f"{str(exc).splitlines()[0] if str(exc) else 'no answer'}); expected the address of a "
@@ -361,7 +363,8 @@ class _client:
 # -- files -------------------------------------------------------------------------------------------
 
 
-def _output_path(out) -> Path:
+def check_table_path(out) -> Path:
+    """The table's path, refused (InputError) unless it ends in .parquet and its folder is writable."""
     out = Path(out)
     if out.suffix.lower() != ".parquet":
         raise InputError(f"--out {out}: expected a file name ending in .parquet, got {out.name!r}")
@@ -370,6 +373,13 @@ def _output_path(out) -> Path:
         raise InputError(f"--out {out}: the folder {folder} does not exist; create it or choose another path")
     if not os.access(folder, os.W_OK) or (out.exists() and not os.access(out, os.W_OK)):
         raise InputError(f"--out {out}: cannot write there (permission denied); choose a writable path")
+    probe = folder / f".{out.name}.probe"
+    try:                                  # permissions are not all: /proc, a read-only mount, a full disk
+        probe.write_bytes(b"")
+        probe.unlink()
+    except OSError as exc:
+        raise InputError(f"--out {out}: cannot write in {folder} ({exc.strerror or exc}); choose a writable "
+                         f"folder") from None
     return out
 
 

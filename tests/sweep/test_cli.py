@@ -94,3 +94,12 @@ def test_point_outside_a_hypothesis_is_invalid_not_an_error(tmp_path):
     assert code == 0
     assert cls[:2] == ["invalid", "invalid"] and "positive-definite" in reasons[0]      # h = −0.5, 0: F ⊁ 0
     assert cls[2] != "invalid"
+
+
+def test_an_unwritable_folder_is_bad_input_before_any_work(capsys):
+    # /proc: os.access says writable for root, creating a file fails: refused up front, exit 2
+    assert main(["sweep", "aleksandrov2023.fig1", "--grid", "b=0:1:2", "--out", "/proc/x.parquet"]) == 2
+    err = capsys.readouterr().err
+    assert "--out /proc/x.parquet: cannot write" in err and err.count("\n") == 1
+    assert main(["sweep", "aleksandrov2023.fig1", "--grid", "b=0:1:2", "--plot", "/proc/x.png"]) == 2
+    assert "--plot: cannot write" in capsys.readouterr().err

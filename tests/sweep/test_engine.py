@@ -159,7 +159,8 @@ def test_bad_input(tmp_path, grid, sets, message):
         sweep(toy(), grid=grid, sets=sets, out=tmp_path / "x.parquet", options=SERIAL)
 
 
-def test_bad_output_path_and_scheduler(tmp_path):
+def test_bad_output_path_and_scheduler(tmp_path, monkeypatch):
+    monkeypatch.setattr(engine_module, "SCHEDULER_TIMEOUT_SECONDS", 2.0)
     with pytest.raises(InputError, match="does not exist"):
         sweep(toy(), grid=["a=0:1:3"], out=tmp_path / "no" / "x.parquet", options=SERIAL)
     with pytest.raises(InputError, match="ending in .parquet"):
