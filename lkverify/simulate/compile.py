@@ -50,8 +50,8 @@ from sympy.core.function import AppliedUndef
 
 from ..errors import InputError, UnsupportedInput
 from ..declare.functional import outer_integrals as _outer_integrals
-from ..declare.parameters import apply_substitution
-from ..declare.symbols import t
+from ..declare.parameters import ParameterKind, apply_substitution
+from ..declare.symbols import t, zeta
 from ..declare.system import System
 
 __all__ = ["CompiledSystem", "SymbolicSystem", "compile_system", "symbolic_system"]
@@ -340,8 +340,6 @@ def symbolic_system(system: System, values: Mapping[str, object] | None = None, 
     """
     name = system.name or "system"
     if grid:
-        from .family import _grid_substitution
-
         symbols, sub = _grid_substitution(system, dict(values or {}), tuple(grid))
     else:
         P = system.parameters
@@ -589,3 +587,78 @@ def _quad_now(il, a, tt, y_now, past):
         y_hist = np.asarray(past(t_hist)).ravel()[:len(y_now)]
         total += 0.5 * (tt - t_hist) * (il(tt, t_hist, *y_hist) + il(tt, tt, *y_now))
     return total
+
+
+# -- grid names kept free (compile_family, linear_family) ------------------------------------------
+
+_SCALAR = (ParameterKind.REAL, ParameterKind.POSITIVE, ParameterKind.NONNEGATIVE, ParameterKind.DELAY)
+
+
+def _grid_substitution(system: System, values: dict, grid: tuple):
+    """(grid symbols in grid order, the atom replacement of every other parameter)."""
+    P = system.parameters
+    if len(set(grid)) != len(grid):
+        raise InputError(f"grid: expected distinct names, got {list(grid)}")
+    for g in grid:
+        if not (isinstance(g, str) and g.isidentifier()):
+            raise InputError(f"grid: expected parameter names (identifiers), got {g!r}")
+    symbols = {g: (P[g].obj if g in P else sympy.Symbol(g, real=True)) for g in grid}
+    for g in grid:
+        if g in P and P[g].kind not in _SCALAR:
+            raise InputError(f"grid {g}: expected a scalar parameter, got a {P[g].kind.value}; sweep it through a "
+                             f"scalar, e.g. values={{\"{g}\": \"diag(h,h,h)\"}} with grid=[\"h\"]")
+    fixed, symbolic = {}, {}
+    for k, v in values.items():
+        if k in grid:
+            if not (isinstance(v, sympy.Symbol) and v.name == k):
+                raise InputError(f"{k}: a grid name has no fixed value, got {k}={v}; drop it from the values "
+                                 f"(its value is a coordinate of each point)")
+            continue
+        v = _parse(v, k, symbols)
+        if _free_names(v) & set(grid):
+            symbolic[k] = v.xreplace({s: symbols[s.name] for s in _free(v) if s.name in symbols})
+        else:
+            fixed[k] = v
+    used = set().union(*[_free_names(v) for v in symbolic.values()]) if symbolic else set()
+    for g in grid:
+        if g not in P and g not in used:
+            scalars = ", ".join(s.name for s in P if s.kind in _SCALAR)
+            matrix = next((s for s in P if s.shape is not None and s.shape[0] == s.shape[1]), None)
+            example = (f"values={{\"{matrix.name}\": \"diag({','.join([g] * matrix.shape[0])})\"}}" if matrix
+                       else f"values={{\"NAME\": \"2*{g}\"}}")
+            raise InputError(f"grid {g}: expected a scalar parameter of the system "
+                             f"({'one of ' + scalars if scalars else 'it has none'}) or a name used in a value, "
+                             f"got neither; e.g. {example} with grid=[\"{g}\"]")
+    for k in symbolic:
+        if k not in P:
+            raise InputError(f"{k}: no such parameter; known: {', '.join(P.names)}")
+    resolved = P.resolve(fixed, use_defaults=True)
+    sub = P.substitution({k: v for k, v in resolved.items() if k not in grid and k not in symbolic})
+    for k, v in symbolic.items():
+        spec = P[k]
+        if spec.shape is not None:
+            if not isinstance(v, sympy.MatrixBase) or v.shape not in (spec.shape, spec.shape[::-1]):
+                raise InputError(f"{k}: expected a {spec.shape[0]}x{spec.shape[1]} matrix, got {v}")
+            v = sympy.ImmutableMatrix(v.reshape(*spec.shape))
+        elif isinstance(v, sympy.MatrixBase):
+            raise InputError(f"{k}: expected a {spec.kind.value}, got a matrix {v}")
+        sub.update(spec.substitution(v))
+    return [symbols[g] for g in grid], sub
+
+
+def _parse(v, name: str, symbols: dict):
+    if isinstance(v, str):
+        from ..declare.parse import parse_value
+
+        return parse_value(v, name=name, variables={"t": t, "zeta": zeta, **symbols})
+    if isinstance(v, (list, tuple, np.ndarray)):
+        return sympy.ImmutableMatrix(v)
+    return sympy.sympify(v)
+
+
+def _free(v) -> set:
+    return set(getattr(v, "free_symbols", set()))
+
+
+def _free_names(v) -> set:
+    return {s.name for s in _free(v)}

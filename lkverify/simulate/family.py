@@ -50,15 +50,13 @@ import sympy
 from sympy.printing.codeprinter import PrintMethodNotImplementedError
 from sympy.printing.pycode import PythonCodePrinter
 
-from ..declare.parameters import ParameterKind
-from ..declare.symbols import t, zeta
+from ..declare.symbols import t
 from ..declare.system import System
 from ..errors import InputError, UnsupportedInput
-from .compile import _substituted_rhs, _symbolic_rhs
+from .compile import _parse, symbolic_system
 
 __all__ = ["CompiledFamily", "compile_family"]
 
-_SCALAR = (ParameterKind.REAL, ParameterKind.POSITIVE, ParameterKind.NONNEGATIVE, ParameterKind.DELAY)
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -222,10 +220,8 @@ def compile_family(system: System, values: Mapping[str, object] | None = None, *
         raise InputError(f"integrals: expected 'auto' (the fast path has no quadrature), got {integrals!r}; "
                          f"use simulate(..., integrals={integrals!r}) for the reference path")
     name = system.name or "system"
-    symbols, sub = _grid_substitution(system, dict(values or {}), tuple(grid))
-    keep = frozenset(symbols)
-    rhs = _substituted_rhs(system, sub, name, keep)
-    sr = _symbolic_rhs(system, rhs, "auto", name, keep)
+    sym = symbolic_system(system, values, grid=tuple(grid))
+    symbols, sr = list(sym.symbols), sym.rhs
     if sr.quads:
         raise UnsupportedInput(f"{name}: the compiled family integrates windows and sums of exponential kernels "
                                f"as auxiliary states; got {len(sr.quads)} quadrature term(s) such as "
@@ -245,79 +241,6 @@ def compile_family(system: System, values: Mapping[str, object] | None = None, *
                  f"rate {a.lag:g}, weight {a.coeff:g}, from {a.lower:g}") for a in sr.aux)
     return CompiledFamily(name, tuple(grid), tuple(symbols), dict(sr.layout), sr.n_states, len(sr.exprs), aux,
                           sr.exact_lags, exprs, source)
-
-
-# -- grid names and values -----------------------------------------------------------
-
-
-def _grid_substitution(system: System, values: dict, grid: tuple):
-    """(grid symbols in grid order, the atom replacement of every other parameter)."""
-    P = system.parameters
-    if len(set(grid)) != len(grid):
-        raise InputError(f"grid: expected distinct names, got {list(grid)}")
-    for g in grid:
-        if not (isinstance(g, str) and g.isidentifier()):
-            raise InputError(f"grid: expected parameter names (identifiers), got {g!r}")
-    symbols = {g: (P[g].obj if g in P else sympy.Symbol(g, real=True)) for g in grid}
-    for g in grid:
-        if g in P and P[g].kind not in _SCALAR:
-            raise InputError(f"grid {g}: expected a scalar parameter, got a {P[g].kind.value}; sweep it through a "
-                             f"scalar, e.g. values={{\"{g}\": \"diag(h,h,h)\"}} with grid=[\"h\"]")
-    fixed, symbolic = {}, {}
-    for k, v in values.items():
-        if k in grid:
-            if not (isinstance(v, sympy.Symbol) and v.name == k):
-                raise InputError(f"{k}: a grid name has no fixed value, got {k}={v}; drop it from the values "
-                                 f"(its value is a coordinate of each point)")
-            continue
-        v = _parse(v, k, symbols)
-        if _free_names(v) & set(grid):
-            symbolic[k] = v.xreplace({s: symbols[s.name] for s in _free(v) if s.name in symbols})
-        else:
-            fixed[k] = v
-    used = set().union(*[_free_names(v) for v in symbolic.values()]) if symbolic else set()
-    for g in grid:
-        if g not in P and g not in used:
-            scalars = ", ".join(s.name for s in P if s.kind in _SCALAR)
-            matrix = next((s for s in P if s.shape is not None and s.shape[0] == s.shape[1]), None)
-            example = (f"values={{\"{matrix.name}\": \"diag({','.join([g] * matrix.shape[0])})\"}}" if matrix
-                       else f"values={{\"NAME\": \"2*{g}\"}}")
-            raise InputError(f"grid {g}: expected a scalar parameter of the system "
-                             f"({'one of ' + scalars if scalars else 'it has none'}) or a name used in a value, "
-                             f"got neither; e.g. {example} with grid=[\"{g}\"]")
-    for k in symbolic:
-        if k not in P:
-            raise InputError(f"{k}: no such parameter; known: {', '.join(P.names)}")
-    resolved = P.resolve(fixed, use_defaults=True)
-    sub = P.substitution({k: v for k, v in resolved.items() if k not in grid and k not in symbolic})
-    for k, v in symbolic.items():
-        spec = P[k]
-        if spec.shape is not None:
-            if not isinstance(v, sympy.MatrixBase) or v.shape not in (spec.shape, spec.shape[::-1]):
-                raise InputError(f"{k}: expected a {spec.shape[0]}x{spec.shape[1]} matrix, got {v}")
-            v = sympy.ImmutableMatrix(v.reshape(*spec.shape))
-        elif isinstance(v, sympy.MatrixBase):
-            raise InputError(f"{k}: expected a {spec.kind.value}, got a matrix {v}")
-        sub.update(spec.substitution(v))
-    return [symbols[g] for g in grid], sub
-
-
-def _parse(v, name: str, symbols: dict):
-    if isinstance(v, str):
-        from ..declare.parse import parse_value
-
-        return parse_value(v, name=name, variables={"t": t, "zeta": zeta, **symbols})
-    if isinstance(v, (list, tuple, np.ndarray)):
-        return sympy.ImmutableMatrix(v)
-    return sympy.sympify(v)
-
-
-def _free(v) -> set:
-    return set(getattr(v, "free_symbols", set()))
-
-
-def _free_names(v) -> set:
-    return {s.name for s in _free(v)}
 
 
 # -- code generation ---------------------------------------------------------------
