@@ -328,29 +328,9 @@ def check_output_path(path: str, *, option: str = "--plot") -> Path:
         The name does not end in ``.png``, ``.pdf`` or ``.svg``, names a directory, its folder does not
         exist or is not writable, or the file exists and is not writable.
     """
-    if not path.lower().endswith(FIGURE_SUFFIXES):
-        raise InputError(f"{option}: expected a file name ending in {', '.join(FIGURE_SUFFIXES)} (the format "
-                         f"follows the suffix), got {path}")
-    p = Path(path)
-    if p.is_dir():
-        raise InputError(f"{option}: expected a file name, got the directory {path}; pass e.g. {p / 'figure.png'}")
-    parent = p.parent if str(p.parent) else Path(".")
-    if not parent.is_dir():
-        what = "is not a directory" if parent.exists() else "does not exist"
-        raise InputError(f"{option}: the folder {parent} of {path} {what}; expected an existing folder; "
-                         f"create it first (mkdir -p {parent}) or write elsewhere")
-    if not os.access(parent, os.W_OK | os.X_OK):
-        raise InputError(f"{option}: the folder {parent} is not writable; expected a folder you can write to")
-    if p.exists() and not os.access(p, os.W_OK):
-        raise InputError(f"{option}: {path} exists and is not writable; expected a writable file")
-    probe = parent / f".{p.name}.probe"
-    try:                                  # permissions are not all: /proc, a read-only mount, a full disk
-        probe.write_bytes(b"")
-        probe.unlink()
-    except OSError as exc:
-        raise InputError(f"{option}: cannot write in the folder {parent} ({exc.strerror or exc}); expected a "
-                         f"folder you can write to") from None
-    return p
+    from .report.files import check_writable_file
+
+    return check_writable_file(path, option=option, suffixes=FIGURE_SUFFIXES, note=" (the format follows the suffix)")
 
 
 def _emit(reports, *, json_out: bool) -> int:

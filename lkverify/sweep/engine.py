@@ -35,6 +35,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
+from ..report.files import check_writable_file
 from .evaluate import CLASSES, run_chunk
 from .grid import Grid
 from .plan import Plan, PointChecks, build_plan, holds, sub_grids
@@ -364,23 +365,8 @@ class _client:
 
 
 def check_table_path(out) -> Path:
-    """The table's path, refused (InputError) unless it ends in .parquet and its folder is writable."""
-    out = Path(out)
-    if out.suffix.lower() != ".parquet":
-        raise InputError(f"--out {out}: expected a file name ending in .parquet, got {out.name!r}")
-    folder = out.parent if str(out.parent) else Path(".")
-    if not folder.is_dir():
-        raise InputError(f"--out {out}: the folder {folder} does not exist; create it or choose another path")
-    if not os.access(folder, os.W_OK) or (out.exists() and not os.access(out, os.W_OK)):
-        raise InputError(f"--out {out}: cannot write there (permission denied); choose a writable path")
-    probe = folder / f".{out.name}.probe"
-    try:                                  # permissions are not all: /proc, a read-only mount, a full disk
-        probe.write_bytes(b"")
-        probe.unlink()
-    except OSError as exc:
-        raise InputError(f"--out {out}: cannot write in {folder} ({exc.strerror or exc}); choose a writable "
-                         f"folder") from None
-    return out
+    """The table's path, refused (InputError) unless it ends in .parquet and can be written there."""
+    return check_writable_file(out, option=f"--out {out}", suffixes=(".parquet",))
 
 
 def _meta(plan: Plan, options: SweepOptions) -> dict:

@@ -168,6 +168,7 @@ def _free(v) -> set:
 
 def _check_names(names, swept, templates, given, P, example) -> None:
     used = set().union(*[{str(s) for s in _free(v)} for v in templates.values()]) if templates else set()
+    defaults = P.resolve({}, use_defaults=True)
     for n in names:
         if n == str(_t):
             raise InputError(f"--grid {n}: t is the time; expected a parameter name")
@@ -177,7 +178,7 @@ def _check_names(names, swept, templates, given, P, example) -> None:
             raise InputError(f"--grid {n}: no parameter {n} in {example.qualified_name}'s system and no --set "
                              f"template uses it; expected one of {', '.join(P.names)}, or a name in a template "
                              f"such as --set \"F=diag({n},{n},{n})\"")
-        if n in swept and not isinstance(P.resolve({}, use_defaults=True).get(n, sympy.S.Zero), sympy.Expr):
+        if n in swept and not isinstance(defaults.get(n, sympy.S.Zero), sympy.Expr):
             raise InputError(f"--grid {n}: {n} is a matrix or vector parameter; sweep it through a scalar with a "
                              f"template, e.g. --set \"{n}=diag(h,h,h)\" --grid h=0.1:2:20")
 
