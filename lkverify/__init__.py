@@ -50,7 +50,7 @@ from .linear import (LinearDelaySystem, certified_interval, certify_delay, linea
 from .linear import linear_family, linearise, linearise_at
 from .simulate import (BoundedNotAttractive, Converges, DoesNotConverge, EnvelopeSpec, FasterThan, FromValues, Run,
                        Sensitive, Series, SmootherThan, StepControl, compile_family)
-from .sweep import SweepOptions, SweepResult, sweep
+from .sweep import SweepOptions, SweepResult  # the job itself is lkverify.sweep.sweep (the name is the subpackage's)
 
 __all__ = [
     "Accuracy", "Block", "BoundClaim", "Budget", "QuadraticForms", "BudgetExceeded", "Check", "Deadline", "DerivativeClaim", "DerivativeResult",
@@ -70,7 +70,7 @@ __all__ = [
     "stability_intervals",
     "linearise", "linearise_at", "linear_family",
     # sweeps (simulate.family, sweep)
-    "compile_family", "SweepOptions", "SweepResult", "sweep",
+    "compile_family", "SweepOptions", "SweepResult",
 ]
 
 __version__ = "0.1.0"

@@ -183,8 +183,12 @@ def _report(result: SweepResult, marks, plot: str, figure_note: str) -> Report:
     for th, names in meta["theorems"].items():
         applies = np.asarray(result.table.column(f"applies:{th}").to_pylist(), dtype=bool)
         where = f"at {int(applies.sum())} of {int(valid.sum())} valid points" if applies.any() else "nowhere on this grid"
-        results.append(Result("hypothesis", f"{th}: {' and '.join(names)}", Status.EXACT, int(applies.sum()),
-                              f"the hypotheses hold {where} (decided exactly at each point)"))
+        status = Status(meta["theorem_status"][th])
+        how = {Status.EXACT: "decided exactly at each point",
+               Status.CERTIFIED: "decided at each point, some by interval enclosures",
+               Status.UNDECIDED: "undecided at some points, counted as not holding there"}[status]
+        results.append(Result("hypothesis", f"{th}: {' and '.join(names)}", status, int(applies.sum()),
+                              f"the hypotheses hold {where} ({how})"))
     verdicts = np.asarray(result.table.column("linear_verdict").to_pylist(), dtype=object)
     if meta["linear"]:
         results.append(Result("linear", "linearisation", Status.UNDECIDED, None, meta["linear"]))

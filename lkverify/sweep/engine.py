@@ -38,7 +38,7 @@ from ..errors import InputError
 from ..report.files import check_writable_file
 from .evaluate import CLASSES, run_chunk
 from .grid import Grid
-from .plan import Plan, PointChecks, build_plan, holds, sub_grids
+from .plan import Plan, PointChecks, build_plan, holds, sub_grids, weakest
 
 __all__ = ["SweepOptions", "SweepResult", "sweep", "DEFAULT_CHUNK_SIZE"]
 
@@ -217,6 +217,7 @@ def sweep(item, *, grid: Sequence[str] | Grid, sets: Sequence[str] = (), out, op
     done = _finished_chunks(parts, meta["fingerprint"], len(chunks), options.fresh)
     mark = time.monotonic()
     checks = _exact_columns(plan, grid)
+    meta["theorem_status"] = checks.pop("_how")      # how each theorem's region was decided (weakest point)
     timings["exact checks"] = time.monotonic() - mark
     todo = [k for k in range(len(chunks)) if k not in done]
     reported = [sum(len(chunks[k]) for k in done)]
@@ -263,18 +264,23 @@ def _exact_columns(plan: Plan, grid: Grid) -> dict:
                 reason[idx] = why
     valid = reason == ""
     cols = {}
+    how = {}
     for th in plan.theorems:
         applies = valid.copy()
+        seen = set()
         for k, h in enumerate(th.hypotheses):
             margin = np.full(shape, np.nan)
             ok = np.zeros(shape, dtype=bool)
             for idx, point in sub_grids(grid, checks.hypothesis_names(h)):
-                status, m = checks.hypothesis(h, point)
+                status, m, decided = checks.hypothesis(h, point)
                 margin[idx], ok[idx] = m, holds(status)
+                if decided is not None:
+                    seen.add(decided)
             applies &= ok
             cols[f"margin:{th.short}:{k}"] = np.where(valid, margin, np.nan).ravel()
         cols[f"applies:{th.short}"] = applies.ravel()
-    return {"valid": valid.ravel(), "invalid_reason": reason.ravel(), **cols}
+        how[th.short] = weakest(seen).value
+    return {"valid": valid.ravel(), "invalid_reason": reason.ravel(), **cols, "_how": how}
 
 
 # -- running the chunks ------------------------------------------------------------------------------

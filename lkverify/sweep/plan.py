@@ -282,15 +282,36 @@ class PointChecks:
         return set().union(*[self.depends[p] for p in params]) if params else set()
 
     def hypothesis(self, h, point: Mapping) -> tuple:
-        """(status, margin float) of a hypothesis at a sub-grid point; NaN margin where a value is invalid."""
+        """(status, margin float, how decided) of a hypothesis at a sub-grid point.
+
+        ``how`` is ``exact`` (a rational margin, held or failed), ``certified`` (decided by an
+        enclosure), ``undecided``, or None where a parameter value is invalid (not evaluated).
+        """
         values = {p: self.value(p, point) for p, deps in self.depends.items() if deps <= set(point)}
         if any(self.reason(p, point) for p in values):
-            return Status.UNDECIDED, float("nan")
+            return Status.UNDECIDED, float("nan"), None
         try:
             res = h.evaluate(self.P.substitution({**self.base, **values}))
         except InputError:
-            return Status.UNDECIDED, float("nan")
-        return res.status, _float(res.value)
+            return Status.UNDECIDED, float("nan"), Status.UNDECIDED
+        how = res.status
+        if how is Status.FAILED:
+            how = Status.EXACT if isinstance(res.value, sympy.Basic) and res.value.is_Rational else Status.CERTIFIED
+        return res.status, _float(res.value), how
+
+
+#: how a region was decided, weakest last: the region's status is its weakest point's
+_STRENGTH = (Status.EXACT, Status.CERTIFIED, Status.UNDECIDED)
+
+
+def weakest(statuses) -> Status:
+    """The weakest of the ways a region's points were decided (EXACT when there are none).
+
+    >>> weakest([Status.EXACT, Status.CERTIFIED]).value, weakest([]).value
+    ('certified', 'exact')
+    """
+    ranks = [_STRENGTH.index(s) if s in _STRENGTH else len(_STRENGTH) - 1 for s in statuses]
+    return _STRENGTH[max(ranks, default=0)]
 
 
 def sub_grids(grid: Grid, names: set):

@@ -103,3 +103,46 @@ def test_an_unwritable_folder_is_bad_input_before_any_work(capsys):
     assert "--out /proc/x.parquet: cannot write" in err and err.count("\n") == 1
     assert main(["sweep", "aleksandrov2023.fig1", "--grid", "b=0:1:2", "--plot", "/proc/x.png"]) == 2
     assert "--plot: cannot write" in capsys.readouterr().err
+
+
+def test_theorem3_boundary_is_exact_at_a_tiny_difference(tmp_path):
+    # b·τ < a with a = 2, τ = 9/10: b = 20/9 − 10⁻¹² holds, b = 20/9 fails (margin exactly 0, strict)
+    out = tmp_path / "edge.parquet"
+    code = main(["sweep", "aleksandrov2023.fig3", "--set", "F=diag(h,h,h)", "--grid", "b=20/9-10**-12:20/9:2",
+                 "--grid", "h=0.7:0.7:1", "--t-end", "1", "--scheduler", "synchronous", "--quiet", "--out", str(out),
+                 "--json"])
+    table = pq.read_table(out)
+    assert code in (0, 1)
+    assert table.column("applies:theorem3").to_pylist() == [True, False]
+    meta = json.loads(table.schema.metadata[b"lkverify.sweep"])
+    assert meta["theorem_status"] == {"theorem3": "exact"}
+
+
+def test_an_irrational_margin_makes_the_region_certified_not_exact(tmp_path, capsys):
+    out = tmp_path / "irr.parquet"
+    main(["sweep", "aleksandrov2023.fig3", "--set", "F=diag(h,h,h)", "--set", "tau=sqrt(2)/2", "--grid", "b=2:3:3",
+          "--grid", "h=0.7:0.7:1", "--t-end", "1", "--scheduler", "synchronous", "--quiet", "--out", str(out), "--json"])
+    report = json.loads(capsys.readouterr().out)
+    row = next(r for r in report["results"] if r["kind"] == "hypothesis")
+    assert row["status"] == "certified"
+    # b < 2/(√2/2) = 2√2 ≈ 2.83: b = 2, 2.5 hold, b = 3 fails
+    assert pq.read_table(out).column("applies:theorem3").to_pylist() == [True, True, False]
+
+
+def test_a_mark_that_disagrees_with_its_figure_fails(tmp_path, capsys, monkeypatch):
+    import lkverify.sweep.cli as sweep_cli
+
+    real = sweep_cli.run_chunk
+
+    def contrary(sim, points, valid):       # as if the simulation at the paper's gains said the opposite
+        cols = real(sim, points, valid)
+        cols["simulated"] = cols["simulated"].copy()
+        cols["simulated"][:] = ["bounded" if c == "converged" else "converged" for c in cols["simulated"]]
+        return cols
+
+    monkeypatch.setattr(sweep_cli, "run_chunk", contrary)
+    code = main([*FIG1, "--grid", "b=2:2:1", "--grid", "h=0.7:0.7:1", "--t-end", "1", "--out",
+                 str(tmp_path / "c.parquet"), "--json"])
+    report = json.loads(capsys.readouterr().out)
+    marks = {r["name"].split(" (")[0]: r["status"] for r in report["results"] if r["name"].startswith("Fig.")}
+    assert code == 1 and marks == {"Fig. 1": "failed", "Fig. 2": "failed"}

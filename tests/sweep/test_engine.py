@@ -207,3 +207,14 @@ def test_a_system_the_fast_path_does_not_take_runs_point_by_point(tmp_path):
     assert res.table.column("simulated").to_pylist() == ["converged", "converged"]
     assert res.table.column("linear_verdict").to_pylist() == ["", ""]       # no equilibrium declared
     assert "no equilibrium" in res.meta["linear"]
+
+
+def test_budget_spent_leaves_points_undecided_and_resumable(tmp_path):
+    out = tmp_path / "budget.parquet"
+    res = sweep(toy(), grid=["a=0.25:2.5:10"], out=out,
+                options=SweepOptions(scheduler="synchronous", chunk_size=3, budget=1e-9))
+    assert not res.complete
+    assert set(res.table.column("simulated").to_pylist()) == {"undecided"}
+    assert set(res.table.column("outcome").to_pylist()) == {"budget"}
+    again = sweep(toy(), grid=["a=0.25:2.5:10"], out=out, options=SERIAL)
+    assert again.complete and again.reused == 0 and "undecided" not in again.table.column("simulated").to_pylist()
