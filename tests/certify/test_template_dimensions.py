@@ -45,5 +45,5 @@ def test_template_with_two_2_vectors_bounds_a_mixed_term():
 
 def test_template_refuses_other_dimensions():
     x, _, ctx = _ctx(4)
-    with pytest.raises(InputError, match="dimension 2 or 3"):
+    with pytest.raises(InputError, match="dimension 1, 2 or 3"):
         Template("k", {"e": 2}).apply((x(t).T * x(t))[0], "upper", ctx)

@@ -41,7 +41,7 @@ from collections.abc import Callable
 import sympy
 
 from ...status import Status
-from .rules import Application, Condition, Rule, _cond, nonnegative
+from .rules import Application, Condition, Rule, _cond, conjugate_exponents, nonnegative
 
 __all__ = ["LowerBound", "OnRegion", "PowerSplit", "WindowHolder", "YoungEach"]
 
@@ -130,9 +130,7 @@ class YoungEach(Rule):
         pairs = self._pairs(ctx)
         conds, total, used = [], sympy.S.Zero, 0
         for x, y, p, q, eps in pairs:
-            conds.append(_cond(f"p = {p}, q = {q} conjugate (1/p + 1/q = 1), p > 1",
-                               bool(sympy.simplify(1 / p + 1 / q - 1) == 0) and bool(p > 1),
-                               f"1/p + 1/q = {sympy.simplify(1 / p + 1 / q)}"))
+            conds.append(conjugate_exponents(p, q))
             conds.append(_cond(f"ε = {eps} > 0", bool(eps.is_positive) or None))
             conds.append(_cond(f"{x}, {y} ≥ 0", nonnegative(x) and nonnegative(y)))
         for c, m in _split(ctx.at(previous), syms):
@@ -249,7 +247,7 @@ class WindowHolder(Rule):
                 and sympy.simplify(h - ctx.at(tgt.window)) == 0)
         conds = [_cond(f"{src.name}, {tgt.name}: window integrals of one vector over one window", same,
                        f"{src.kind} of {src.vector.T}, {tgt.kind} of {tgt.vector.T}"),
-                 _cond(f"orders k = {k} ≤ P = {P}", bool(sympy.sympify(P - k).is_nonnegative) and bool(k > 0)),
+                 _cond(f"orders k = {k} ≤ P = {P}", bool(sympy.sympify(P - k).is_nonnegative) and sympy.sympify(k).is_positive is True),
                  _cond(f"window length {h} ≥ 0", nonnegative(h))]
         bound, more = _substitute(ctx.at(previous), src.symbol, h ** (1 - k / P) * tgt.symbol ** (k / P), "upper",
                                   direction, f"h^(1−k/P)·{tgt.name}^(k/P) ≥ {src.name}")

@@ -106,14 +106,23 @@ class Context:
         self.sub = self.system.parameters.substitution(self.values)
         self.certified = {}  # constants certified inside norm trees: name → (value, info)
 
-    def seconds_left(self, default: float = 30.0) -> float:
-        """Seconds for one certification: what is left of the step's deadline (``default`` without one)."""
+    def seconds_left(self, default: float | None = None) -> float | None:
+        """Wall-clock seconds for one certification: what is left of the user's budget, at most ``default``.
+
+        Without a budget (the catalogue's default) this is ``default`` — None for the rules'
+        suprema, which are then limited by boxes alone, so a verdict does not depend on the
+        machine's speed or load.
+        """
         from ...options import Deadline
 
         if isinstance(self.budget, Deadline):
             left = self.budget.remaining
-            return default if left is None else max(min(left, default), 1e-3)
-        return default if self.budget is None else max(min(float(self.budget), default), 1e-3)
+            if left is None:
+                return default
+            return max(left if default is None else min(left, default), 1e-3)
+        if self.budget is None:
+            return default
+        return max(float(self.budget) if default is None else min(float(self.budget), default), 1e-3)
 
     def __getitem__(self, name):
         """The resolved value of a parameter (so a callable of the values also works with the context)."""
@@ -558,9 +567,7 @@ def _window_factor(g, lo, hi, measure: Measure, k, holder, ctx: Context, *, lowe
         gmax = vals[0] if len(set(vals)) == 1 else _max_of(vals)
         return (gmax, mpow), conds
     p, q = (ctx.at(x) for x in holder)
-    conds.append(_cond(f"Hölder exponents p = {p}, q = {q} are conjugate (1/p + 1/q = 1)",
-                       bool(sympy.simplify(1 / p + 1 / q - 1) == 0) and bool(p > 1) and bool(q > 1),
-                       f"1/p + 1/q = {sympy.simplify(1 / p + 1 / q)}"))
+    conds.append(conjugate_exponents(p, q))
     if measure.kind != "window_norm":
         return None, conds + [_cond("Hölder needs a window norm (∫‖v‖^p)^{1/p}", False, f"{measure.name} is a "
                                     f"{measure.kind}")]
@@ -621,11 +628,7 @@ def resolve_norm(nb: Norm, vector, ctx: Context) -> tuple:
         target = M * sympy.Matrix(ctx.at(sympy.Matrix(inner.vector)))
         if target.shape != vec.shape or not all(ctx.zero(x) for x in vec - target):
             return None, [_cond("the vector is M·v (‖Mv‖ ≤ κ‖v‖)", False, f"{list(vec)} is not {list(target)}")]
-        res = matrix_positive_definite(kappa**2 * sympy.eye(M.shape[1]) - M.T * M, name="κ²I − MᵀM",
-                                       semidefinite=True)
-        conds.append(Condition(f"κ = {kappa} ≥ ‖M‖ (κ²I − MᵀM ⪰ 0)", res.status if res.status.is_proof else
-                               (Status.FAILED if res.status is Status.FAILED else Status.UNDECIDED),
-                               "" if res.status.is_proof else f"the operator norm is larger: {res.detail}"))
+        conds += operator_norm_conditions(M, kappa)
         bi, ci = _resolve_norm(inner, inner.vector, ctx)
         conds += ci
         return (None if bi is None else kappa * bi), conds
@@ -728,6 +731,33 @@ def _resolve_integrals(vec, pointwise, measures, k, weight, constant, ctx: Conte
         return None, conds
     gmax, _ = fac
     return gmax * kappa * sum((m.symbol for m in measures), sympy.S.Zero), conds
+
+
+def operator_norm_conditions(M, kappa) -> list:
+    """The side conditions of ‖M v‖ ≤ κ‖v‖: κ ≥ 0 and κ²I − MᵀM ⪰ 0 (decided exactly, or in arb).
+
+    Both are needed: κ²I − MᵀM ⪰ 0 alone also holds for κ = −‖M‖.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> [c.status.value for c in operator_norm_conditions(sympy.eye(2), 1)]
+    ['exact', 'exact']
+    >>> [c.status.value for c in operator_norm_conditions(sympy.eye(2), sympy.Rational(1, 2))]
+    ['exact', 'failed']
+    >>> [c.status.value for c in operator_norm_conditions(sympy.eye(2), -1)]
+    ['failed', 'exact']
+    """
+    M = sympy.Matrix(M)
+    kappa = sympy.sympify(kappa)
+    sk = _sign(kappa)
+    conds = [_cond(f"κ = {kappa} ≥ 0", True if sk == 1 else (False if kappa.is_negative else None),
+                   "κ is negative" if kappa.is_negative else "the sign of κ is not known")]
+    res = matrix_positive_definite(kappa**2 * sympy.eye(M.shape[1]) - M.T * M, name="κ²I − MᵀM", semidefinite=True)
+    conds.append(Condition(f"κ = {kappa} ≥ ‖M‖ (κ²I − MᵀM ⪰ 0)", res.status if res.status.is_proof else
+                           (Status.FAILED if res.status is Status.FAILED else Status.UNDECIDED),
+                           "" if res.status.is_proof else f"the operator norm is larger: {res.detail}"))
+    return conds
 
 
 def _is_unit(vec, ctx: Context) -> bool:
@@ -859,9 +889,11 @@ class Rayleigh(Rule):
         u = sympy.Matrix(ctx.at(sympy.Matrix(as_column(self.vector))))
         M = sympy.Matrix(ctx.at(sympy.Matrix(self.matrix)))
         c = ctx.at(self.factor)
-        conds = [_cond("M is symmetric", M == M.T, "M ≠ Mᵀ")]
+        conds = [_cond("M is symmetric", M.is_square and all(ctx.zero(d) for d in M - M.T), "M ≠ Mᵀ")]
         conds.append(_cond(f"the term is ({self.factor})·uᵀMu", ctx.zero(ctx.definitions(c) * (u.T * M * u)[0]
                                                                           - ctx.at(term)), "it is not"))
+        if not conds[0].status.is_proof:  # the eigenvalue bounds below are those of a symmetric M
+            return Application(self.name, None, tuple(conds))
         sign = _factor_sign(c, [m.symbol for m in ctx.measures.values()])
         if sign is None:
             conds.append(_cond("the factor's sign is known", None, f"{c}"))
@@ -923,13 +955,8 @@ class CauchySchwarz(Rule):
         kappa = sympy.S.One if self.operator_norm is None and self.matrix is None else ctx.at(self.operator_norm)
         if kappa is None:
             return Application(self.name, None, tuple(conds) + (_cond("an operator norm κ is given", False),))
-        if self.matrix is not None:
-            res = matrix_positive_definite(kappa**2 * sympy.eye(M.shape[1]) - M.T * M, name="κ²I − MᵀM",
-                                           semidefinite=True)
-            conds.append(_cond(f"κ = {kappa} ≥ 0", _sign(kappa) == 1))
-            conds.append(Condition(f"κ = {kappa} ≥ ‖M‖ (κ²I − MᵀM ⪰ 0)", res.status if res.status.is_proof else
-                                   (Status.FAILED if res.status is Status.FAILED else Status.UNDECIDED),
-                                   "" if res.status.is_proof else f"the operator norm is larger: {res.detail}"))
+        # κ is checked against the true operator norm whether M is given or is the identity (‖I‖ = 1)
+        conds += operator_norm_conditions(M, kappa)
         bu, cu = _resolve_norm(self.norms[0], u, ctx)
         bv, cv = _resolve_norm(self.norms[1], v, ctx)
         conds += cu + cv
@@ -1033,9 +1060,17 @@ class WindowWeight(Rule):
 
 @dataclasses.dataclass(frozen=True)
 class Young(Rule):
-    """c·x·y ≤ c(ε x^p/p + ε^{−q/p} y^q/q) for x, y ≥ 0, c ≥ 0, ε > 0, 1/p + 1/q = 1.
+    """c·x·y ≤ c(ε x^p/p + ε^{−q/p} y^q/q) for x, y ≥ 0, c ≥ 0; and ≥ for c ≤ 0 (ε > 0, 1/p + 1/q = 1).
 
     Applied after another rule (``then=``): it rewrites that rule's bound c·x·y.
+
+    ==============================  ==========================================================
+    licenses                        x·y ≤ ε x^p/p + ε^{−q/p} y^q/q, multiplied by c
+    direction                       ≤ steps with c ≥ 0; ≥ steps with c ≤ 0 (c·x·y ≥ c(…))
+    side conditions                 the bound is c·x·y with c free of measures; the sign of c
+                                    as the direction needs; p, q conjugate with p > 1;
+                                    ε > 0; x, y ≥ 0
+    ==============================  ==========================================================
 
     Examples
     --------
@@ -1051,6 +1086,8 @@ class Young(Rule):
     ('exact', a**2 + 4*b**2)
     >>> Young(a.symbol, b.symbol, p=3, q=2).rewrite(4 * a.symbol * b.symbol, ctx).status.value
     'failed'
+    >>> Young(a.symbol, b.symbol).rewrite(2 * a.symbol * b.symbol, ctx, "lower").detail   # 2ab ≥ a² + b² is false
+    'side condition fails: c = 2 ≤ 0 (a ≥ step needs c ≤ 0): it has the other sign'
     """
 
     x: object
@@ -1059,35 +1096,69 @@ class Young(Rule):
     q: object = 2
     eps: object = 1
     name = "Young's inequality with a parameter"
+    directional = True
 
-    def rewrite(self, previous, ctx) -> Application:
+    def rewrite(self, previous, ctx, direction: str = "upper") -> Application:
         x, y = ctx.at(self.x), ctx.at(self.y)
         p, q, eps = (ctx.at(v) for v in (self.p, self.q, self.eps))
         c = sympy.simplify(previous / (x * y))
+        sc = _sign(c)
+        if direction == "upper":
+            sign_cond = _cond(f"c = {c} ≥ 0 (a ≤ step needs c ≥ 0)", True if sc == 1 else (False if sc == -1 and c != 0
+                                                                                          else None),
+                              "it has the other sign" if sc == -1 else "the sign of c is not known")
+        else:
+            sign_cond = _cond(f"c = {c} ≤ 0 (a ≥ step needs c ≤ 0)", True if sc == -1 else (False if sc == 1 and c != 0
+                                                                                           else None),
+                              "it has the other sign" if sc == 1 else "the sign of c is not known")
         conds = [_cond(f"the bound is c·({self.x})·({self.y}) with c constant",
                        not (c.free_symbols & {m.symbol for m in ctx.measures.values()}), f"c = {c}"),
-                 _cond(f"c = {c} ≥ 0", _sign(c) == 1 or None),
-                 _cond(f"p = {p}, q = {q} conjugate (1/p + 1/q = 1)",
-                       bool(sympy.simplify(1 / p + 1 / q - 1) == 0) and bool(p > 1),
-                       f"1/p + 1/q = {sympy.simplify(1 / p + 1 / q)}"),
-                 _cond(f"ε = {eps} > 0", bool(eps.is_positive) or None),
+                 sign_cond,
+                 conjugate_exponents(p, q),
+                 _cond(f"ε = {eps} > 0", True if eps.is_positive else (False if eps.is_nonpositive else None)),
                  _cond("x, y ≥ 0", nonnegative(x) and nonnegative(y))]
         bound = sympy.expand(c * (eps * x**p / p + eps ** (-q / p) * y**q / q))
         return Application(self.name, bound, tuple(conds))
 
     def apply(self, term, direction, ctx):
-        return self.rewrite(ctx.at(term), ctx)
+        return self.rewrite(ctx.at(term), ctx, direction)
+
+
+def conjugate_exponents(p, q) -> Condition:
+    """The side condition "p, q conjugate": 1/p + 1/q = 1 exactly and p > 1 (then q > 1 too).
+
+    Decided exactly; symbolic exponents whose sign cannot be decided give ``undecided``.
+
+    Examples
+    --------
+    >>> conjugate_exponents(3, sympy.Rational(3, 2)).status.value, conjugate_exponents(3, 2).status.value
+    ('exact', 'failed')
+    >>> conjugate_exponents(sympy.Rational(1, 2), -1).status.value     # 2 − 1 = 1 but p < 1
+    'failed'
+    """
+    p, q = sympy.sympify(p), sympy.sympify(q)
+    text = f"p = {p}, q = {q} conjugate (1/p + 1/q = 1, p > 1)"
+    d = sympy.simplify(1 / p + 1 / q - 1)
+    gt = sympy.simplify(p - 1)
+    if d.is_zero is False or gt.is_positive is False:
+        return _cond(text, False, f"1/p + 1/q = {sympy.simplify(1 / p + 1 / q)}, p − 1 = {gt}")
+    if d == 0 and gt.is_positive:
+        return _cond(text, True)
+    return _cond(text, None, f"1/p + 1/q − 1 = {d}, p − 1 = {gt} not decided")
 
 
 _HOMOGENEOUS_CACHE: dict = {}  # (g, T, xs) → a certified (κ, conditions, info): one proof per process
 
 
-def _homogeneous_sup(g, T, xs, seconds: float = 30.0):
+def _homogeneous_sup(g, T, xs, seconds: float | None = None):
     """(κ or None, conditions, info): κ ≥ sup g/T over x ≥ 0, x ≠ 0 for g, T homogeneous of one degree.
 
-    Homogeneity is checked exactly (g(ρx)/T(ρx) = g(x)/T(x)); the supremum is then the one on
-    the faces max_k x_k = 1 of the unit cube, certified there with arb.  A certified result is
-    kept for the process (the same supremum recurs in several steps of one proof).
+    Homogeneity is checked exactly (g(ρx)/T(ρx) = g(x)/T(x)) and T > 0 on x ≥ 0, x ≠ 0 is
+    certified (its minimum on the faces max_k x_k = 1 of the unit cube is > 0; with T ≤ 0
+    somewhere g ≤ κT would not follow from g/T ≤ κ); the supremum is then the one on those
+    faces, certified there with arb.  The work is limited by boxes (deterministic);
+    ``seconds`` is the user's wall-clock cap (None: none).  A certified result is kept for the
+    process (the same supremum recurs in several steps of one proof).
     """
     key = (sympy.sympify(g), sympy.sympify(T), tuple(xs))
     if key in _HOMOGENEOUS_CACHE:
@@ -1096,6 +1167,13 @@ def _homogeneous_sup(g, T, xs, seconds: float = 30.0):
     if out[0] is not None:
         _HOMOGENEOUS_CACHE[key] = out
     return out
+
+
+def _faces(expr, xs, pos):
+    """The restrictions of ``expr`` (in the positive symbols ``pos``) to the faces max_k x_k = 1 of the unit cube."""
+    for x in xs:
+        others = {pos[y]: sympy.Symbol(f"{y.name}_f", nonnegative=True) for y in xs if y != x}
+        yield expr.xreplace({pos[x]: sympy.S.One, **others}), {v: (0, 1) for v in others.values()}
 
 
 def _homogeneous_sup_uncached(g, T, xs, seconds):
@@ -1111,13 +1189,21 @@ def _homogeneous_sup_uncached(g, T, xs, seconds):
     conds.append(_cond(f"g and T = {T} are homogeneous of one degree", free == 1, f"g(ρx)/T(ρx) ÷ g/T = {free}"))
     if not conds[-1].status.is_proof:
         return None, conds, {}
+    budget = Budget(seconds=seconds, boxes=TEMPLATE_BOXES)
+    Tpos = sympy.sympify(T).xreplace(pos)
+    worst = None
+    for on_face, box in _faces(-Tpos, xs, pos):  # sup(−T) < 0 on every face: T > 0 off 0
+        r = sup_bound(on_face, box, accuracy=TEMPLATE_ACCURACY, budget=budget, enclosure=TEMPLATE_ENCLOSURE)
+        if r.certified is None or not r.certified < 0:
+            ok = False if (r.estimate is not None and r.estimate >= 0) else None
+            conds.append(_cond(f"T = {T} > 0 for x ≥ 0, x ≠ 0", ok, f"sup(−T) on a face: estimate {r.estimate:.3g}, "
+                               f"certified {r.certified}", certified=True))
+            return None, conds, {}
+        worst = r.certified if worst is None else max(worst, r.certified)
+    conds.append(_cond(f"T = {T} > 0 for x ≥ 0, x ≠ 0 (min on the faces ≥ {-worst:.6g})", True, certified=True))
     best = None
-    for x in xs:
-        others = {pos[y]: sympy.Symbol(f"{y.name}_f", nonnegative=True) for y in xs if y != x}
-        on_face = ratio.xreplace({pos[x]: sympy.S.One, **others})
-        box = {v: (0, 1) for v in others.values()}
-        r = sup_bound(on_face, box, accuracy=TEMPLATE_ACCURACY, budget=Budget(seconds=seconds, boxes=TEMPLATE_BOXES),
-                      enclosure=TEMPLATE_ENCLOSURE)
+    for on_face, box in _faces(ratio, xs, pos):
+        r = sup_bound(on_face, box, accuracy=TEMPLATE_ACCURACY, budget=budget, enclosure=TEMPLATE_ENCLOSURE)
         if r.certified is None or not r.certified < float("inf"):
             conds.append(_cond("κ certified", None, "no finite certified bound on a face", certified=True))
             return None, conds, {}
@@ -1136,9 +1222,36 @@ class Homogeneous(Rule):
 
     A direct certificate in finitely many variables, applied after another rule
     (``then=``): the previous bound must be ``factor·g(x)``; the ratio g(ρx)/T(ρx) must be
-    that at x (homogeneity, checked exactly), so κ = sup g/T over x ≥ 0, x ≠ 0 is its
+    that at x (homogeneity, checked exactly), so sup g/T over x ≥ 0, x ≠ 0 is its
     supremum on the faces max_k x_k = 1 of the unit cube, certified there with arb.
     ``constant`` names κ.
+
+    ==============================  ==========================================================
+    licenses                        g ≤ κ_sup·T and g ≥ κ_inf·T (κ_sup ≥ sup g/T,
+                                    κ_inf ≤ inf g/T), multiplied by the factor
+    direction                       ≤ step with factor ≥ 0, or ≥ step with factor ≤ 0: κ_sup;
+                                    ≥ step with factor ≥ 0, or ≤ step with factor ≤ 0: κ_inf
+    side conditions                 the sign of the factor is known (a constant of known sign
+                                    times nonnegative measures); g has no other measures;
+                                    g, T homogeneous of one degree (exact); T > 0 for x ≥ 0,
+                                    x ≠ 0 (certified); κ certified
+    ==============================  ==========================================================
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
+    >>> from lkverify.certify.steps.measures import norm_measure
+    >>> P = Parameters(); x, y = Vector("x", 2), Vector("y", 2)
+    >>> a, b = norm_measure("a", x(t)), norm_measure("b", y(t)); A, B = a.symbol, b.symbol
+    >>> ctx = Context(System([Equation(x, [Term(-x(t))]), Equation(y, [Term(-y(t))])], parameters=P),
+    ...               P.resolve({}), {"a": a, "b": b})
+    >>> up = Homogeneous(("a", "b"), (A**2 + B**2) ** 2, "c").rewrite(A**4 + B**4, ctx)     # a⁴ + b⁴ ≤ (a² + b²)²
+    >>> up.status.value, 1 <= up.constants[0][1] < 1.01
+    ('certified', True)
+    >>> low = Homogeneous(("a", "b"), (A**2 + B**2) ** 2, "c").rewrite(A**4 + B**4, ctx, "lower")   # ≥ ½(a² + b²)²
+    >>> low.status.value, 0.49 < low.constants[0][1] <= 0.5
+    ('certified', True)
     """
 
     variables: tuple
@@ -1146,25 +1259,34 @@ class Homogeneous(Rule):
     constant: str
     factor: object = 1
     name = "homogeneity and a certified supremum on the faces of the unit cube (finitely many variables)"
+    directional = True
 
-    def rewrite(self, previous, ctx) -> Application:
+    def rewrite(self, previous, ctx, direction: str = "upper") -> Application:
         xs = [ctx.measure(n).symbol for n in self.variables]
         factor, T = ctx.at(self.factor), ctx.at(self.template)
         g = sympy.simplify(ctx.at(previous) / factor)
         conds = [_cond(f"the bound is ({self.factor})·g({', '.join(self.variables)})",
                        not (g.free_symbols & ({m.symbol for m in ctx.measures.values()} - set(xs))),
                        f"g = {g} involves other measures")]
-        if not conds[0].status.is_proof:
+        sign = _factor_sign(factor, [m.symbol for m in ctx.measures.values()])
+        conds.append(_cond(f"the sign of the factor {self.factor} is known", sign is not None,
+                           "neither ≥ 0 nor ≤ 0 is shown"))
+        if not all(c.status.is_proof for c in conds):
             return Application(self.name, None, tuple(conds))
-        kappa, hconds, info = _homogeneous_sup(g, T, xs, ctx.seconds_left())
+        want_sup = (direction == "upper") == (sign > 0)
+        # κ_inf = −sup(−g/T): a certified upper bound of sup(−g/T) is a certified lower bound of inf g/T
+        kappa, hconds, info = _homogeneous_sup(g if want_sup else -g, T, xs, ctx.seconds_left(None))
         conds += hconds
         if kappa is None:
             return Application(self.name, None, tuple(conds))
+        if not want_sup:
+            kappa = -kappa
+            info = dict(info, certified=-info["certified"], estimate=-info["estimate"], bound="infimum")
         return Application(self.name, sympy.expand(factor * kappa * T), tuple(conds),
                            ((self.constant, info["certified"], info),))
 
     def apply(self, term, direction, ctx):
-        return self.rewrite(ctx.at(term), ctx)
+        return self.rewrite(ctx.at(term), ctx, direction)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -1204,11 +1326,14 @@ class Template(Rule):
     name = "template constant (supremum over a chart, certified)"
 
     def ratio(self, term, direction, ctx):
-        """(expression in chart variables, box) of the ratio whose supremum is κ."""
+        """(expressions in chart variables, box): κ is the largest of their suprema over the box.
+
+        One expression per combination of the directions ±1 of the 1-vectors (one expression
+        without 1-vectors)."""
         from ..charts import unit_vector_angles, unit_vector_near
 
         e = ctx.at(term) if direction == "upper" else -ctx.at(term)
-        rep, box, back, scales, flips = {}, {}, {}, [], []
+        rep, box, back, scales, flips, charted, signs = {}, {}, {}, [], [], {}, []
         den = sympy.S.One
         for k, (name, power) in enumerate(self.exponents.items()):
             m = ctx.measure(name)
@@ -1218,7 +1343,14 @@ class Template(Rule):
             if len(states) != 1:
                 raise InputError(f"Template {self.constant}: measure {name} must measure one state")
             (state,) = states
+            if state in charted:
+                raise InputError(f"Template {self.constant}: measures {charted[state]} and {name} measure one state "
+                                 f"{state.name}; the chart needs one measure per state (use one of them)")
+            charted[state] = name
             ref = sympy.Matrix(ctx.at(sympy.Matrix(state(t)) - sympy.Matrix(m.vector)))
+            if ref.free_symbols & {m_.symbol for m_ in ctx.measures.values()} or ref.atoms(AppliedUndef) or ref.has(t):
+                raise InputError(f"Template {self.constant}: measure {name} must be ‖{state.name}(t) − c‖ with a "
+                                 f"constant c, got {m.text}")
             E = sympy.Dummy(f"E{k}", nonnegative=True)
             scales.append(E)
             if state.unit:
@@ -1228,6 +1360,10 @@ class Template(Rule):
                 value = ref + E * (-sympy.sin(rho / 2) * ref + sympy.cos(rho / 2) * n)
                 box.update(cap.region)
                 back[E] = 2 * sympy.sin(rho / 2)
+            elif state.dim == 1:  # v = ref ± W: two directions, enumerated below
+                sigma = sympy.Dummy(f"sigma{k}", real=True)
+                value = ref + E * sympy.Matrix([sigma])
+                signs.append((E, sigma))
             elif state.dim == 2:  # v = W·(cos θ, sin θ), θ ∈ [0, 2π]
                 th = sympy.Dummy(f"theta{k}", real=True)
                 value = ref + E * sympy.Matrix([sympy.cos(th), sympy.sin(th)])
@@ -1241,11 +1377,12 @@ class Template(Rule):
                 flips.append((E, th, sympy.pi / 2))
             else:
                 raise InputError(f"Template {self.constant}: measure {name} is the norm of a {state.dim}-vector; "
-                                 f"the chart covers vectors of dimension 2 or 3")
+                                 f"the chart covers vectors of dimension 1, 2 or 3")
             for f, x in zip(state.functions, value):
                 rep[f(t)] = x
             den *= E ** power
-        q = sympy.expand(sympy.expand(e.xreplace(rep)) / den)
+        num = sympy.expand(e.xreplace(rep))
+        q = sympy.expand(num / den)
         for E in scales:
             for tm in sympy.Add.make_args(q):
                 if tm.as_powers_dict().get(E, 0) < 0:
@@ -1255,17 +1392,25 @@ class Template(Rule):
                                       "(a power of its norm remains after division)")
         if q.atoms(AppliedUndef) or q.has(sympy.Integral):
             raise _NotHomogeneous("the term involves states or histories that no measure of the template charts")
-        # a ratio even in a direction v̂ (v̂ → −v̂, i.e. E → −E) needs only half the directions
-        # (the upper hemisphere θ ∈ [0, π/2] in R³, θ ∈ [0, π] in R²)
+        if q.has(t):
+            raise _NotHomogeneous("the term depends on t explicitly (a time-varying coefficient): a supremum over "
+                                  "the chart alone does not bound it for every t")
+        # A ratio even in a direction v̂ needs only half the directions (the upper hemisphere
+        # θ ∈ [0, π/2] in R³, θ ∈ [0, π] in R²; the other half is its antipodal image).  The
+        # antipodal map v̂ → −v̂ is E → −E in the *numerator* — the term at v = ref − E·v̂ — while
+        # the denominator E^k stays the norm's power: the test must be made before E is divided
+        # out (after it, q is free of E and every ratio would pass, halving odd ratios' domains).
         for E, th, half in flips:
-            if sympy.expand(q - q.xreplace({E: -E})) == 0:
+            if sympy.expand(num - num.xreplace({E: -E})) == 0:
                 box[th] = (0, half)
-        return q.xreplace(back), box
+        # a 1-vector has the two directions ±1: every combination of them (one when the term is even)
+        qs = [q.xreplace(back)]
+        for E, sigma in signs:
+            even = sympy.expand(num - num.xreplace({E: -E})) == 0
+            qs = [qq.xreplace({sigma: sgn}) for qq in qs for sgn in ((1,) if even else (1, -1))]
+        return qs, box
 
     def apply(self, term, direction, ctx):
-        from ..bounds import sup_bound
-        from ...options import Budget
-
         conds = []
         # the region inside the chart
         rho = ctx.at(self.rho_max)
@@ -1290,14 +1435,19 @@ class Template(Rule):
                                    f"the region's bound {b} exceeds the chart's {float(chart_e):.6g}",
                                    certified=True))
         try:
-            q, box = self.ratio(term, direction, ctx)
+            qs, box = self.ratio(term, direction, ctx)
         except _NotHomogeneous as exc:
             return Application(self.name, None, tuple(conds) + (_cond("the ratio is well defined", False, str(exc)),))
         if any(not c.status.is_proof for c in conds):
             return Application(self.name, None, tuple(conds))
-        res = sup_bound(q, box, accuracy=TEMPLATE_ACCURACY, budget=Budget(seconds=ctx.seconds_left(),
-                                                                         boxes=TEMPLATE_BOXES),
-                        enclosure=TEMPLATE_ENCLOSURE)
+        res = None
+        for q in qs:
+            r = _sup_of_ratio(q, box, ctx)
+            if r.certified is None or not r.certified < float("inf"):
+                res = r
+                break
+            if res is None or r.certified > res.certified:
+                res = r
         proved = res.certified is not None and res.certified < float("inf")
         kappa = sympy.Rational(res.certified) if proved else None
         conds.append(_cond(f"κ = sup = {res.certified:.6g} certified (estimate {res.estimate:.6g}, gap "
@@ -1312,6 +1462,18 @@ class Template(Rule):
                 "seconds": res.seconds, "maximiser": {str(k): v for k, v in (res.maximiser or {}).items()}
                 if isinstance(res.maximiser, dict) else None}
         return Application(self.name, bound, tuple(conds), ((self.constant, res.certified, info),))
+
+
+def _sup_of_ratio(q, box, ctx):
+    """The certified supremum of one ratio over the chart's box (a constant ratio is its own supremum)."""
+    from ..bounds import sup_bound
+    from ...options import Budget
+
+    if not box:  # no chart variables (1-vectors only): the ratio is a number
+        box = {sympy.Dummy("unused"): (0, 1)}
+    return sup_bound(q, box, accuracy=TEMPLATE_ACCURACY, budget=Budget(seconds=ctx.seconds_left(),
+                                                                      boxes=TEMPLATE_BOXES),
+                     enclosure=TEMPLATE_ENCLOSURE)
 
 
 class _NotHomogeneous(Exception):
