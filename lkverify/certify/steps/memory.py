@@ -212,6 +212,14 @@ def _outer_memory_integral(expr):
 class MemoryWeight(Rule):
     """c·∫_0^t κ(t−ξ)Σ_i‖v_i(ξ)‖^p dξ = c·Σ_i M_i for memory measures M_i of one kernel κ and power p.
 
+
+    ==============================  ==========================================================
+    licenses                        c·∫_0^t κ(t−ξ)Σ‖v_i(ξ)‖^p dξ = c·Σ M_i
+    direction                       both (an equality)
+    side conditions                 the term is c·∫_0^t(…) with c constant; the integrand is
+                                    exactly Σ κ(t−ξ)‖v_i(ξ)‖^p of the named measures
+    ==============================  ==========================================================
+
     Examples
     --------
     >>> import sympy
@@ -333,6 +341,15 @@ class KernelBound(Rule):
     Assumption 1 of paper 000) or here: c·κ_t − κ_s simplifies to 0 or to a structurally
     nonnegative expression (proved), or is negative at a sample u (refuted, exactly).
 
+
+    ==============================  ==========================================================
+    licenses                        M_s ≤ c·M_t when κ_s ≤ c·κ_t on [0, ∞)
+    direction                       the bound nondecreasing in M_s (≤ steps) or nonincreasing
+                                    (≥ steps), checked by ∂/∂M_s
+    side conditions                 one vector and one power; c ≥ 0; the kernel inequality
+                                    (a lemma, exact, or refuted at a sample u); monotonicity
+    ==============================  ==========================================================
+
     Examples
     --------
     >>> import sympy
@@ -394,6 +411,14 @@ class MemoryHolder(Rule):
     k ≤ P; ∫_0^∞κ is evaluated exactly and must be finite; the bound must be monotone in the
     source (checked).
 
+
+    ==============================  ==========================================================
+    licenses                        ∫_0^tκ‖v‖^k ≤ (∫_0^∞κ)^{1−k/P}(∫_0^tκ‖v‖^P)^{k/P}
+    direction                       monotone in the source as the direction needs (∂/∂M_s)
+    side conditions                 one vector, one kernel; 0 < k ≤ P; κ ≥ 0 on [0, ∞);
+                                    ∫_0^∞κ finite (evaluated exactly); monotonicity
+    ==============================  ==========================================================
+
     Examples
     --------
     >>> import sympy
@@ -420,7 +445,8 @@ class MemoryHolder(Rule):
         same = s.vector == g.vector and sympy.simplify(ks - _kernel_at(g, ctx)) == 0
         kint = kernel_integral(s.kernel, ctx.sub)
         conds = [_cond(f"{s.name}, {g.name}: memory integrals of one vector with one kernel", same),
-                 _cond(f"orders 0 < k = {k} ≤ P = {P}", bool(sympy.sympify(P - k).is_nonnegative) and bool(k > 0)),
+                 _cond(f"orders 0 < k = {k} ≤ P = {P}",
+                       sympy.sympify(P - k).is_nonnegative is True and sympy.sympify(k).is_positive is True),
                  _cond(f"the kernel {ks} ≥ 0 on [0, ∞)", nonnegative(ks) or None, "not shown"),
                  _cond(f"∫_0^∞ κ = {kint} is finite", kint is not None, "it diverges or is not evaluated")]
         if kint is None:
@@ -436,6 +462,15 @@ class MemoryHolder(Rule):
 @dataclasses.dataclass(frozen=True)
 class Evaluated(Rule):
     """``rule`` applied to the term with its constant integrals evaluated exactly (e.g. ∫_0^∞ g = 1/2).
+
+
+    ==============================  ==========================================================
+    licenses                        what ``rule`` licenses, on the term with its constant
+                                    integrals evaluated exactly
+    direction                       that of ``rule``
+    side conditions                 no constant integral left unevaluated; every condition of
+                                    ``rule``
+    ==============================  ==========================================================
 
     Examples
     --------

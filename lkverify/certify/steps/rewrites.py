@@ -98,6 +98,14 @@ class YoungEach(Rule):
     ε may be an expression in the parameters).  For an upper bound c ≥ 0 is required, for a
     lower bound c ≤ 0 (then c·x·y ≥ c(…)).  Terms that match no pair are kept.
 
+
+    ==============================  ==========================================================
+    licenses                        c·x·y ≤ c(ε x^p/p + ε^{−q/p} y^q/q) on each matching term
+    direction                       ≤ steps with c ≥ 0; ≥ steps with c ≤ 0 (per term)
+    side conditions                 p, q conjugate with p > 1; ε > 0; x, y ≥ 0; the sign of
+                                    each matched coefficient; some term matches
+    ==============================  ==========================================================
+
     Examples
     --------
     >>> import sympy
@@ -163,6 +171,14 @@ class OnRegion(Rule):
     (:meth:`~lkverify.certify.steps.measures.Region.bound_of`: a norm at t or t − c, a window
     integral or norm, from the sup over the window).
 
+
+    ==============================  ==========================================================
+    licenses                        x^a ≤ h^{a−k}x^k for 0 ≤ x ≤ h, a > k
+    direction                       ≤ steps: the term's other factor ≥ 0; ≥ steps: ≤ 0
+    side conditions                 the region bounds the measure by h; h ≥ 0; the factor's
+                                    sign; some term has a power above k
+    ==============================  ==========================================================
+
     Examples
     --------
     >>> import sympy
@@ -220,6 +236,15 @@ class WindowHolder(Rule):
     ``source`` is a window integral of order k, ``target`` a window integral of order P of the
     same vector over the same window; the bound must be monotone in the source (checked).
 
+
+    ==============================  ==========================================================
+    licenses                        ∫‖v‖^k ≤ h^{1−k/P}(∫‖v‖^P)^{k/P} over one window, 0 < k ≤ P
+    direction                       the bound nondecreasing in the source (≤ steps) or
+                                    nonincreasing (≥ steps), checked by ∂/∂(source)
+    side conditions                 both window integrals of one vector over one window;
+                                    0 < k ≤ P; h ≥ 0; the monotonicity
+    ==============================  ==========================================================
+
     Examples
     --------
     >>> import sympy
@@ -247,7 +272,8 @@ class WindowHolder(Rule):
                 and sympy.simplify(h - ctx.at(tgt.window)) == 0)
         conds = [_cond(f"{src.name}, {tgt.name}: window integrals of one vector over one window", same,
                        f"{src.kind} of {src.vector.T}, {tgt.kind} of {tgt.vector.T}"),
-                 _cond(f"orders k = {k} ≤ P = {P}", bool(sympy.sympify(P - k).is_nonnegative) and sympy.sympify(k).is_positive is True),
+                 _cond(f"orders k = {k} ≤ P = {P}",
+                       sympy.sympify(P - k).is_nonnegative is True and sympy.sympify(k).is_positive is True),
                  _cond(f"window length {h} ≥ 0", nonnegative(h))]
         bound, more = _substitute(ctx.at(previous), src.symbol, h ** (1 - k / P) * tgt.symbol ** (k / P), "upper",
                                   direction, f"h^(1−k/P)·{tgt.name}^(k/P) ≥ {src.name}")
@@ -264,6 +290,14 @@ class PowerSplit(Rule):
     A_k is the summand whose measures R contains (the first summand otherwise); c·R must be
     ≤ 0 in an upper bound (≥ 0 in a lower one), so that the smaller power may replace the
     larger.  Applied to −c7 f^ν(α1²e1² + α2²e2²) it gives −c7((α1/2)^ν α1² e1^{2ν+2} + …).
+
+
+    ==============================  ==========================================================
+    licenses                        (ΣA_i)^ν ≥ A_k^ν for A_i ≥ 0, ν > 0
+    direction                       ≤ steps: the factor c·R ≤ 0; ≥ steps: c·R ≥ 0
+    side conditions                 every A_i ≥ 0; ν > 0; the factor's sign; some term has a
+                                    power of a sum of measures
+    ==============================  ==========================================================
 
     Examples
     --------
@@ -321,6 +355,15 @@ class LowerBound(Rule):
     :class:`~lkverify.certify.steps.rules.Condition` (certified, failed or undecided);
     ``bound`` is ℓ in the other measures.  The bound so far must be nonincreasing in m for an
     upper bound (nondecreasing for a lower one), checked structurally.
+
+
+    ==============================  ==========================================================
+    licenses                        m ≥ ℓ (LowerBound) or m ≤ u (UpperBound) from a lemma
+    direction                       the bound nonincreasing in m (≤ steps with ℓ, ≥ steps with
+                                    u) or nondecreasing (the other two), checked by ∂/∂m
+    side conditions                 the lemma, decided at the values on the region (its own
+                                    status); the monotonicity
+    ==============================  ==========================================================
 
     Examples
     --------

@@ -14,8 +14,19 @@ nonnegative remainder.  Every application records its side conditions with a sta
                              Hölder with conjugate exponents (p, q), kp = the measure's order
 :class:`Template`            term ≤ κ·(monomial of measures): κ the supremum over a chart
                              of the region (certified with arb)
-:class:`Young`               c·x·y ≤ c(ε x^p/p + ε^{−q/p} y^q/q), p, q conjugate, ε > 0
+:class:`Young`               c·x·y ≤ c(ε x^p/p + ε^{−q/p} y^q/q), p, q conjugate, ε > 0, c ≥ 0
+                             (≤ steps) or c ≤ 0 (≥ steps)
+:class:`Homogeneous`         factor·g ≤ factor·κ·T (g, T homogeneous, T > 0 certified): κ the
+                             supremum or the infimum of g/T, as the direction and the factor's
+                             sign need
+:class:`ProductCS`           two Cauchy–Schwarz bounds on a product of two bilinear forms
+:class:`Printed`             nothing (the step as printed: only a witness decides it)
 ===========================  ==========================================================
+
+Each rule's docstring has a table of the inequality it licenses, the directions (≤ steps,
+≥ steps) in which it may be used and every side condition; the rule decides each
+condition and an application is ``exact`` / ``certified`` only when all hold
+(tests/certify/test_rule_side_conditions.py violates each alone).
 
 Vector norms inside the rules are bounded by :class:`Norm` trees: a measure's vector
 (:func:`measured`), a unit vector (:func:`unit`), a cross product ‖a × b‖ ≤ ‖a‖‖b‖
@@ -475,7 +486,11 @@ def summed(*parts: Norm) -> Norm:
 
 
 def mapped(matrix, inner: Norm, operator_norm) -> Norm:
-    """‖M v‖ ≤ κ‖v‖ with κ ≥ ‖M‖ (κ²I − MᵀM ⪰ 0, decided where it is used); κ may be a callable of the context."""
+    """‖M v‖ ≤ κ‖v‖ with κ ≥ ‖M‖: κ ≥ 0 and κ²I − MᵀM ⪰ 0, both decided where it is used.
+
+    κ may be a callable of the context.  Side conditions: the vector is exactly M·v (on the
+    state manifold); κ ≥ 0; κ²I − MᵀM ⪰ 0; the inner tree's own conditions.
+    """
     return Norm("‖Mv‖ ≤ κ‖v‖", sympy.ImmutableMatrix(sympy.Matrix(matrix) * sympy.Matrix(inner.vector)), None,
                 (inner,), data=(sympy.ImmutableMatrix(matrix), operator_norm))
 
@@ -781,6 +796,13 @@ class Printed(Rule):
     It never proves anything: the step is only decided by an adversarial witness
     (``failed``) or stays ``undecided``.
 
+
+    ==============================  ==========================================================
+    licenses                        nothing: the application is ``undecided``
+    direction                       both
+    side conditions                 none can hold: only a witness decides the step (``failed``)
+    ==============================  ==========================================================
+
     Examples
     --------
     >>> from lkverify import Equation, Parameters, System, Term, Vector, t
@@ -805,6 +827,14 @@ class Printed(Rule):
 @dataclasses.dataclass(frozen=True)
 class Equal(Rule):
     """The term equals the bound once the measures are replaced by their definitions (exactly).
+
+
+    ==============================  ==========================================================
+    licenses                        term = bound (measures replaced by their definitions)
+    direction                       both (an equality)
+    side conditions                 the difference is 0 exactly on the state manifold (unit
+                                    vectors, frames), t ≥ 0
+    ==============================  ==========================================================
 
     Examples
     --------
@@ -831,6 +861,14 @@ class Equal(Rule):
 @dataclasses.dataclass(frozen=True)
 class Nonpositive(Rule):
     """term ≤ 0 (direction "upper") or term ≥ 0 ("lower"): a signed constant times nonnegative factors.
+
+
+    ==============================  ==========================================================
+    licenses                        term ≤ 0 (≤ step), term ≥ 0 (≥ step)
+    direction                       both, with the sign the direction needs
+    side conditions                 −term (≤ step) or term (≥ step) is structurally ≥ 0
+                                    (:func:`nonnegative`)
+    ==============================  ==========================================================
 
     Examples
     --------
@@ -862,6 +900,16 @@ class Rayleigh(Rule):
     ``factor`` c may contain measures (e.g. −(a − τb)‖s − r‖^{μ−1} = −(a − τb)e^{μ−1});
     ``norm_squared`` is ‖u‖² in measures, checked exactly (modulo unit constraints, so
     ‖s × r‖² = e²(1 − e²/4) is an allowed unit-vector identity).
+
+
+    ==============================  ==========================================================
+    licenses                        λ_min‖u‖² ≤ uᵀMu ≤ λ_max‖u‖², multiplied by c
+    direction                       ≤ with c ≥ 0 or ≥ with c ≤ 0: m ≥ λ_max (mI − M ⪰ 0);
+                                    ≥ with c ≥ 0 or ≤ with c ≤ 0: m ≤ λ_min (M − mI ⪰ 0)
+    side conditions                 M symmetric; the term is c·uᵀMu; the sign of c known; the
+                                    eigenvalue bound (exact LDLᵀ, or arb); ‖u‖² = the stated
+                                    expression in measures (exact on the state manifold)
+    ==============================  ==========================================================
 
     Examples
     --------
@@ -919,6 +967,15 @@ class CauchySchwarz(Rule):
 
     ``norms`` are the :class:`Norm` trees of u and v; ``matrix`` defaults to I
     (κ = 1).  For ``direction="lower"`` the bound is −|c|κ‖u‖‖v‖.
+
+
+    ==============================  ==========================================================
+    licenses                        |c·uᵀMv| ≤ |c|·κ·‖u‖·‖v‖ ≤ |c|·κ·B_u·B_v
+    direction                       both (≤ gives +|c|κB_uB_v, ≥ gives −|c|κB_uB_v)
+    side conditions                 the term is c·uᵀMv; κ ≥ 0 and κ²I − MᵀM ⪰ 0 — also for
+                                    M = I (κ ≥ 1) when no matrix is given; |c| known; the norm
+                                    trees B_u, B_v match u, v and their own conditions hold
+    ==============================  ==========================================================
 
     Examples
     --------
@@ -978,6 +1035,13 @@ class ProductCS(Rule):
     ``first`` and ``second`` are :class:`~lkverify.certify.steps.rules.CauchySchwarz` rules (factor 1) for
     the two forms; the term must be exactly ``factor``·(first form)·(second form) (checked on the state
     manifold, measures in the factor by their definitions); every side condition of both is kept.
+
+    ==============================  ==========================================================
+    licenses                        |c·(uᵀAv)(xᵀBy)| ≤ |c|·(κ_A B_u B_v)(κ_B B_x B_y)
+    direction                       both (±)
+    side conditions                 the term is the product; every condition of both
+                                    :class:`CauchySchwarz` applications; |c| known
+    ==============================  ==========================================================
     """
 
     first: CauchySchwarz
@@ -1012,6 +1076,18 @@ class WindowWeight(Rule):
 
     With ``holder=(p, q)``: ∫ g‖v‖^k ≤ (∫ g^q)^{1/q} (∫‖v‖^{kp})^{1/p} = (∫g^q)^{1/q}·m^k
     (upper only).  ``weight`` is g (affine in ξ), ``factor`` c a constant of known sign.
+
+
+    ==============================  ==========================================================
+    licenses                        (min g)·m ≤ ∫ g‖v‖^k ≤ (max g)·m (m = ∫‖v‖^k, or the
+                                    window norm's power); Hölder: ∫g‖v‖^k ≤ (∫g^q)^{1/q}m^k
+    direction                       ≤ with c ≥ 0 or ≥ with c ≤ 0: max g (or Hölder);
+                                    ≥ with c ≥ 0 or ≤ with c ≤ 0: min g (Hölder refused)
+    side conditions                 the term is c·∫_{t−h}^t g‖v‖^k over the measure's own
+                                    window; the sign of c known; g affine in ξ (its extrema at
+                                    the ends); g ≥ 0 at the ends; k = the measure's order
+                                    (Hölder: p, q conjugate, k·p = the order, a window norm)
+    ==============================  ==========================================================
 
     Examples
     --------
@@ -1301,6 +1377,21 @@ class Template(Rule):
     region lies inside the chart (2 sin(ρ_max/2) ≥ the region's bound on ‖s − r‖).
     ``name`` is the constant's name in bounds; for ``direction="lower"`` κ is the sup of
     −term/… and the bound −κ·(monomial).
+
+
+    ==============================  ==========================================================
+    licenses                        term ≤ κ·Π m_i^{k_i}, κ ≥ sup term/Π m_i^{k_i} (≤ step);
+                                    term ≥ −κ·Π m_i^{k_i}, κ ≥ sup(−term)/Π m_i^{k_i} (≥ step)
+    direction                       both (the supremum of ±term)
+    side conditions                 every measure is ‖x(t) − c‖ of one state (one measure per
+                                    state); the term has no other state, history, integral or
+                                    explicit t; it is divisible by the monomial and, for a
+                                    non-unit vector, homogeneous of its degree; a region is
+                                    stated and lies inside the unit-vector caps; the chart
+                                    covers every direction — half of them only when the term
+                                    is even in that direction (v − c → −(v − c), decided
+                                    exactly before the norm is divided out); κ certified (arb)
+    ==============================  ==========================================================
 
     Examples
     --------
