@@ -73,7 +73,7 @@ import sympy
 from ..errors import InputError
 from ..status import Status
 from .linearise import COORDINATES, _linear_parts
-from .model import LinearDelaySystem
+from .model import LinearDelaySystem, has_float
 from .spectrum import rightmost_roots
 
 __all__ = ["LinearBatch", "LinearFamily", "linear_family", "NODES", "REFINE", "TOL", "VERDICTS"]
@@ -198,6 +198,9 @@ class LinearFamily:
         Chebyshev degree and the number of refined roots per point.
     tol : float
         The critical band (relative to max(1, |λ|)).
+    from_float : bool
+        Some value given to :func:`linear_family` was a float: every system :meth:`at` builds is
+        then at most ``certified`` (:mod:`lkverify.status`).
 
     Examples
     --------
@@ -226,6 +229,7 @@ class LinearFamily:
     nodes: int = NODES
     refine: int = REFINE
     tol: float = TOL
+    from_float: bool = False
 
     def __repr__(self) -> str:
         return (f"LinearFamily({self.name!r}, grid={self.grid}, n={self.n}, delay={self.delay}, "
@@ -241,7 +245,10 @@ class LinearFamily:
         return not self.D.is_zero_matrix
 
     def at(self, values: Mapping) -> LinearDelaySystem:
-        """The linear system at one point, exactly (grid name → exact value).
+        """The linear system at one point, exactly (grid name → exact value; a float at its binary value).
+
+        A float value (or a float given to :func:`linear_family`) marks the system ``from_float``:
+        its results are then at most ``certified``.
 
         >>> import sympy
         >>> from lkverify import Equation, Parameters, System, Term, Vector, t
@@ -258,7 +265,8 @@ class LinearFamily:
         sub = {s: sympy.sympify(values[g]) for g, s in zip(self.grid, self.symbols)}
         kernel = [self.D.xreplace(sub)] if self.has_distributed else []
         return LinearDelaySystem(self.A.xreplace(sub), Ad=self.Ad.xreplace(sub), kernel=kernel,
-                                 name=f"{self.name} at {', '.join(f'{g} = {values[g]}' for g in self.grid)}")
+                                 name=f"{self.name} at {', '.join(f'{g} = {values[g]}' for g in self.grid)}",
+                                 from_float=self.from_float or has_float([values[g] for g in self.grid]))
 
     def delay_at(self, values: Mapping):
         """The delay h at one point, exactly (0 for an ODE).
@@ -433,4 +441,5 @@ def linear_family(system, equilibrium: Mapping, values: Mapping | None = None, *
     return LinearFamily(f"{system.name or 'system'} linearised", grid, parts.symbols, sympy.ImmutableMatrix(parts.A),
                         sympy.ImmutableMatrix(parts.Ad), sympy.ImmutableMatrix(parts.D if parts.windows else
                                                                                sympy.zeros(n, n)),
-                        parts.delay, parts.labels, parts.limits, bool(zero), nodes, refine, float(tol))
+                        parts.delay, parts.labels, parts.limits, bool(zero), nodes, refine, float(tol),
+                        has_float(dict(values or {})))

@@ -53,7 +53,7 @@ from ..certify.lmi import solve_sdp
 from ..certify.matrices import _exact_ldl, _fractions, matrix_positive_definite
 from ..errors import InputError, UnsupportedInput
 from ..status import Status
-from .model import LinearDelaySystem, parse_delay
+from .model import FLOAT_NOTE, LinearDelaySystem, at_most_certified, has_float, parse_delay
 
 __all__ = ["LmiCertificate", "LmiResult", "METHODS", "build_lmi", "certify_delay", "check_certificate", "method_name",
            "quick_check", "solve_certificate"]
@@ -339,7 +339,8 @@ def check_certificate(system: LinearDelaySystem, h, certificate: LmiCertificate,
     Returns
     -------
     ConditionResult
-        ``exact`` (rational data) or ``certified`` (irrational entries, arb) when all four hold;
+        ``exact`` (rational data) or ``certified`` (irrational entries, arb; or a float input: the
+        system's, the delay's or the certificate's, at its exact binary value) when all four hold;
         ``failed`` with the witness of the first that does not.
 
     Examples
@@ -352,6 +353,8 @@ def check_certificate(system: LinearDelaySystem, h, certificate: LmiCertificate,
     <Status.EXACT: 'exact'>
     >>> check_certificate(sys, 1, LmiCertificate(0, -one, one, one)).status
     <Status.FAILED: 'failed'>
+    >>> check_certificate(sys, 1.0, LmiCertificate(0, one, one / 10, one / 10)).status   # a float delay
+    <Status.CERTIFIED: 'certified'>
     """
     hq = parse_delay(h) if not isinstance(h, sympy.Basic) else h
     if not hq > 0:
@@ -362,7 +365,16 @@ def check_certificate(system: LinearDelaySystem, h, certificate: LmiCertificate,
         raise InputError(f"certificate of order {N}: expected P of size {(N + 1) * n}, S and R of size {n}, got "
                          f"{c.P.shape}, {c.S.shape}, {c.R.shape}")
     parts = [matrix_positive_definite(M, name=label) for label, M in _conditions(system, hq, c)]
-    return combine(name or f"{method_name(N)} LMI at h = {hq}", parts, certificate=c)
+    res = combine(name or f"{method_name(N)} LMI at h = {hq}", parts, certificate=c)
+    return _capped(res, system.from_float or has_float(h) or has_float([c.P, c.S, c.R]))
+
+
+def _capped(res, inexact: bool):
+    """``res`` at most ``certified`` when an input went through floating point (:mod:`lkverify.status`)."""
+    status = at_most_certified(res.status, inexact)
+    if status is res.status:
+        return res
+    return dataclasses.replace(res, status=status, detail=f"{res.detail}; {FLOAT_NOTE}")
 
 
 def solve_certificate(system: LinearDelaySystem, h, order: int):
@@ -384,13 +396,15 @@ def certify_delay(system: LinearDelaySystem, h, *, order: int = 2) -> LmiResult:
     system : LinearDelaySystem
         Constant kernel only (a polynomial kernel is :class:`UnsupportedInput`).
     h : number or str
-        The delay, read exactly (``"6.1725"`` is 2469/400).
+        The delay, read exactly (``"6.1725"`` is 2469/400; a float such as 6.17 at its binary
+        value, and the result is then at most ``certified``).
     order : int
         N ≥ 0 (0 Jensen, 1 Wirtinger, ≥ 2 Bessel–Legendre).
 
     Returns
     -------
     LmiResult
+        ``exact`` (rational data), ``certified`` (irrational data, or a float input), or ``undecided``.
 
     Examples
     --------
@@ -416,12 +430,12 @@ def certify_delay(system: LinearDelaySystem, h, *, order: int = 2) -> LmiResult:
                          f"{name}: Clarabel found no strictly feasible point (status {status!r}, margin "
                          f"{margin if margin is None else f'{margin:.2e}'}); no certificate, nothing refuted")
     cert = LmiCertificate(order, *(_round(X) for X in sol))
-    check = check_certificate(system, hq, cert, name=name)
+    check = check_certificate(system, h, cert, name=name)
     t2 = time.perf_counter()
     verdict = ("verified" if check.holds else f"{check.status.value}: {check.detail}")
     detail = (f"{name}: Clarabel status {status!r}, margin {margin:.2e}; P, S, R rounded to multiples of "
               f"2^-{ROUNDING_BITS} and re-verified ({'LDLᵀ in fractions' if system.is_rational else 'arb'}): "
-              f"{verdict}")
+              f"{verdict}" + (f"; {FLOAT_NOTE}" if check.holds and FLOAT_NOTE in check.detail else ""))
     # a candidate that does not verify refutes nothing about the system: the delay stays undecided
     verdict_status = check.status if check.holds else Status.UNDECIDED
     return LmiResult(order, hq, verdict_status, status, cert, check, t1 - t0, t2 - t1, detail)

@@ -41,7 +41,7 @@ from ..certify.matrices import _arb_ldl_pd, matrix_positive_definite
 from ..errors import InputError
 from ..status import Status
 from .hierarchy import PHI_DEGREE, LmiCertificate, _conditions, _phi_at, _round, method_name
-from .model import LinearDelaySystem, parse_delay
+from .model import FLOAT_NOTE, LinearDelaySystem, at_most_certified, has_float, parse_delay
 
 __all__ = ["IntervalCertificate", "certify_cover", "certify_interval"]
 
@@ -153,6 +153,14 @@ def _by_concavity(system, cert, C, concave, ends, name, h1, h2, t0):
     return IntervalCertificate(cert.order, h1, h2, res.status, cert, 2, seconds, detail)
 
 
+def _capped(res: IntervalCertificate, inexact: bool) -> IntervalCertificate:
+    """``res`` at most ``certified`` when an input went through floating point (:mod:`lkverify.status`)."""
+    status = at_most_certified(res.status, inexact)
+    if status is res.status:
+        return res
+    return dataclasses.replace(res, status=status, detail=f"{res.detail}; {FLOAT_NOTE}")
+
+
 def certify_interval(system: LinearDelaySystem, interval, *, order: int = 2) -> IntervalCertificate:
     """One rational certificate, verified for every delay h in [h1, h2] (``certified``).
 
@@ -167,15 +175,22 @@ def certify_interval(system: LinearDelaySystem, interval, *, order: int = 2) -> 
     Returns
     -------
     IntervalCertificate
-        ``exact`` (concave case, rational data) or ``certified`` (pieces in arb); ``undecided`` otherwise (the detail says which
-        step stopped: no common solution, a rounded condition, or a piece of the subdivision).
+        ``exact`` (concave case, rational data) or ``certified`` (pieces in arb, or a float input: the
+        system's or an end given as a float, at its binary value); ``undecided`` otherwise (the detail
+        says which step stopped: no common solution, a rounded condition, or a piece of the subdivision).
 
     Examples
     --------
     >>> from lkverify.linear.model import LinearDelaySystem
     >>> certify_interval(LinearDelaySystem([[-1]], Ad=[["0.5"]]), ("0.1", "10"), order=0).status.value
     'exact'
+    >>> certify_interval(LinearDelaySystem([[-1]], Ad=[[0.5]]), ("0.1", "10"), order=0).status.value
+    'certified'
     """
+    return _capped(_certify_interval(system, interval, order), system.from_float or has_float(list(interval)))
+
+
+def _certify_interval(system: LinearDelaySystem, interval, order: int) -> IntervalCertificate:
     h1, h2 = (parse_delay(v) for v in interval)
     if not 0 < h1 < h2:
         raise InputError(f"interval: expected 0 < h1 < h2, got {interval}")
@@ -231,11 +246,12 @@ def certify_cover(system: LinearDelaySystem, interval, *, order: int = 2, depth:
     (True, 11/100, 17/10)
     """
     h1, h2 = (parse_delay(v) for v in interval)
-    res = certify_interval(system, (h1, h2), order=order)
+    inexact = system.from_float or has_float(list(interval))
+    res = _capped(certify_interval(system, (h1, h2), order=order), inexact)
     if res.holds or depth == 0:
         return [res]
     mid = sympy.Rational(round(float(h1 + h2) / 2 * 10 ** 6), 10 ** 6)
     if not h1 < mid < h2:
         return [res]
-    return (certify_cover(system, (h1, mid), order=order, depth=depth - 1)
-            + certify_cover(system, (mid, h2), order=order, depth=depth - 1))
+    return [_capped(r, inexact) for r in certify_cover(system, (h1, mid), order=order, depth=depth - 1)
+            + certify_cover(system, (mid, h2), order=order, depth=depth - 1)]

@@ -62,7 +62,7 @@ from ..errors import InputError, UnsupportedInput
 from ..declare.parameters import ParameterKind, apply_substitution
 from ..declare.states import UnitVector
 from ..declare.symbols import t
-from .model import LinearDelaySystem
+from .model import LinearDelaySystem, has_float
 
 __all__ = ["Linearisation", "linearise", "linearise_at", "tangent_basis", "COORDINATES"]
 
@@ -211,7 +211,8 @@ def linearise_at(system, equilibrium: Mapping, values: Mapping | None = None, *,
     parts = _linear_parts(system, equilibrium, values, coordinates=coordinates, order=order)
     h = parts.delay
     lin = LinearDelaySystem(parts.A, Ad=parts.Ad, kernel=[parts.D] if parts.windows else (),
-                            name=f"{system.name or 'system'} linearised" + (f", h = {h}" if h is not None else ""))
+                            name=f"{system.name or 'system'} linearised" + (f", h = {h}" if h is not None else ""),
+                            from_float=has_float(dict(values or {})))     # a float value: at most certified
     return Linearisation(lin, h, parts.labels, parts.T, parts.L, parts.full, parts.limits)
 
 

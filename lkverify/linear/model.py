@@ -32,7 +32,7 @@ import sympy
 from ..errors import InputError
 from ..certify.matrices import _as_matrix
 
-__all__ = ["LinearDelaySystem", "parse_delay"]
+__all__ = ["LinearDelaySystem", "at_most_certified", "has_float", "parse_delay"]
 
 #: Gauss–Legendre nodes used for the kernel integrals ∫_0^h u^j e^{−λu} du of polynomial kernels
 KERNEL_NODES = 48
@@ -50,6 +50,11 @@ class LinearDelaySystem:
     kernel : sequence of square matrices, optional
         D_0, D_1, … of the kernel K(u) = Σ_j D_j u^j; ``[D]`` is a constant kernel.
     name : str
+    from_float : bool
+        Some input went through floating point (a Python or NumPy float, a float array, a SymPy
+        ``Float``): set from the inputs (or passed True).  The entries are kept at their exact
+        binary value, but every result about this system is then at most ``certified``, never
+        ``exact`` (:mod:`lkverify.status`, rule 3).
 
     Raises
     ------
@@ -61,6 +66,8 @@ class LinearDelaySystem:
     --------
     >>> LinearDelaySystem([[0.2, 0], [0.2, 0.1]], kernel=[[[-1, 0], [-1, -1]]]).kernel_order
     0
+    >>> LinearDelaySystem([[0.2]]).from_float, LinearDelaySystem([["0.2"]]).from_float
+    (True, False)
     >>> LinearDelaySystem([[1, 2]])
     Traceback (most recent call last):
     ...
@@ -71,9 +78,11 @@ class LinearDelaySystem:
     Ad: object = None
     kernel: tuple = ()
     name: str = "linear delay system"
+    from_float: bool = False
 
     def __post_init__(self):
         problems = []
+        floated = bool(self.from_float) or has_float([self.A, self.Ad, self.kernel])
         A = _try_matrix(self.A, "A", problems)
         n = A.rows if A is not None else None
         Ad = _try_matrix(self.Ad, "Ad", problems) if self.Ad is not None else None
@@ -94,6 +103,7 @@ class LinearDelaySystem:
         object.__setattr__(self, "A", sympy.ImmutableMatrix(A))
         object.__setattr__(self, "Ad", sympy.ImmutableMatrix(Ad))
         object.__setattr__(self, "kernel", tuple(sympy.ImmutableMatrix(K) for K in D))
+        object.__setattr__(self, "from_float", floated)
 
     # ------------------------------------------------------------------ properties
     @property
@@ -217,6 +227,58 @@ def _legendre_nodes():
 def _gauss(h: float):
     x, w = _legendre_nodes()
     return h * (x + 1) / 2, w * h / 2
+
+
+def has_float(value) -> bool:
+    """True when ``value`` (a number, matrix, array, or nested lists/tuples/dicts of them) holds a float.
+
+    Python and NumPy floats, float or complex NumPy arrays and SymPy ``Float`` atoms count; text
+    such as ``"0.9"`` (read as the exact decimal) and rationals do not.
+
+    Examples
+    --------
+    >>> has_float([[1, "0.5"], [sympy.Rational(1, 3), 2]]), has_float({"h": 0.5}), has_float(np.eye(2))
+    (False, True, True)
+    >>> has_float(sympy.Float(2) * sympy.Symbol("k")), has_float(np.array([[1, 2]]))
+    (True, False)
+    """
+    if isinstance(value, bool):
+        return False
+    if isinstance(value, (float, np.floating, complex, np.complexfloating)):
+        return True
+    if isinstance(value, np.ndarray):
+        return value.dtype.kind in "fc" or (value.dtype.kind == "O" and any(has_float(v) for v in value.flat))
+    if isinstance(value, sympy.MatrixBase):
+        return any(has_float(e) for e in value)
+    if isinstance(value, sympy.Basic):
+        return value.has(sympy.Float)
+    if isinstance(value, dict):
+        return any(has_float(v) for v in value.values())
+    if isinstance(value, (list, tuple)):
+        return any(has_float(v) for v in value)
+    return False
+
+
+def at_most_certified(status, inexact: bool):
+    """``exact`` lowered to ``certified`` when some input went through floating point (else unchanged).
+
+    The one place :mod:`lkverify.linear` applies rule 3 of :mod:`lkverify.status`; ``failed`` and
+    ``undecided`` are kept.
+
+    >>> from lkverify.status import Status
+    >>> at_most_certified(Status.EXACT, True).value, at_most_certified(Status.EXACT, False).value
+    ('certified', 'exact')
+    >>> at_most_certified(Status.FAILED, True).value
+    'failed'
+    """
+    from ..status import Status
+
+    return Status.CERTIFIED if inexact and status is Status.EXACT else status
+
+
+#: the note a result gets when a float input capped it at ``certified``
+FLOAT_NOTE = ("a float input (taken at its exact binary value) makes this at most certified, never exact "
+              "(lkverify.status)")
 
 
 def parse_delay(value, name: str = "h") -> sympy.Rational:

@@ -185,7 +185,7 @@ def _report(result: SweepResult, marks, plot: str, figure_note: str) -> Report:
         where = f"at {int(applies.sum())} of {int(valid.sum())} valid points" if applies.any() else "nowhere on this grid"
         status = Status(meta["theorem_status"][th])
         how = {Status.EXACT: "decided exactly at each point",
-               Status.CERTIFIED: "decided at each point, some by interval enclosures",
+               Status.CERTIFIED: "decided at each point, some by interval enclosures or on float inputs",
                Status.UNDECIDED: "undecided at some points, counted as not holding there"}[status]
         results.append(Result("hypothesis", f"{th}: {' and '.join(names)}", status, int(applies.sum()),
                               f"the hypotheses hold {where} ({how})"))

@@ -62,6 +62,7 @@ class Plan:
     simulation: Simulation
     linear_note: str           # why there is no linear margin ("" when there is one)
     simulation_note: str       # "" for the compiled path, else why each point is compiled on its own
+    floated: frozenset = frozenset()   # names of the symbols whose values were given as floats (at most certified)
 
     def values_at(self, point: Mapping) -> dict:
         """The exact parameter values at a grid point (name → exact value)."""
@@ -137,7 +138,9 @@ def build_plan(item, *, grid: Grid, sets: Sequence[str] = (), t_end: float | Non
         fixed.pop(k, None)
     for k in templates:
         fixed.pop(k, None)
-    fixed = dict(P.resolve(fixed, use_defaults=False))   # exact, within their parameters' hypotheses
+    resolved = P.resolve(fixed, use_defaults=False)      # exact, within their parameters' hypotheses
+    floated = frozenset(str(s) for s in P.float_symbols(resolved))   # floats at their binary value: never exact
+    fixed = dict(resolved)
     t_end = _t_end(example.t_end if t_end is None else t_end)
     symbolic = {**fixed, **templates, **{k: symbols[k] for k in swept}}
     simulation, sim_note = _simulation(example, symbolic, names, t_end, samples, rtol, atol, level, max_steps,
@@ -145,7 +148,7 @@ def build_plan(item, *, grid: Grid, sets: Sequence[str] = (), t_end: float | Non
     linear, lin_note = _linear(example, symbolic, names)
     simulation = dataclasses.replace(simulation, linear=linear)
     return Plan(example.qualified_name, example, grid, texts, fixed, templates,
-                swept, _theorems(example), simulation, lin_note, sim_note)
+                swept, _theorems(example), simulation, lin_note, sim_note, floated)
 
 
 def _parse_sets(sets, symbols, P) -> tuple:
@@ -285,7 +288,8 @@ class PointChecks:
         """(status, margin float, how decided) of a hypothesis at a sub-grid point.
 
         ``how`` is ``exact`` (a rational margin, held or failed), ``certified`` (decided by an
-        enclosure), ``undecided``, or None where a parameter value is invalid (not evaluated).
+        enclosure, or on a value given as a float: :mod:`lkverify.status`, rule 3), ``undecided``,
+        or None where a parameter value is invalid (not evaluated).
         """
         values = {p: self.value(p, point) for p, deps in self.depends.items() if deps <= set(point)}
         if any(self.reason(p, point) for p in values):
@@ -297,6 +301,11 @@ class PointChecks:
         how = res.status
         if how is Status.FAILED:
             how = Status.EXACT if isinstance(res.value, sympy.Basic) and res.value.is_Rational else Status.CERTIFIED
+        names = _hypothesis_names(h)
+        if self.plan.floated and ("*" in names or names & self.plan.floated):   # a float input: never exact
+            how = Status.CERTIFIED if how is Status.EXACT else how
+            status = Status.CERTIFIED if res.status is Status.EXACT else res.status
+            return status, _float(res.value), how
         return res.status, _float(res.value), how
 
 
