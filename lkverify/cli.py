@@ -342,7 +342,16 @@ def _emit(reports, *, json_out: bool) -> int:
         print(json.dumps(out, indent=2, ensure_ascii=False))
     else:
         print("\n\n".join(r.as_text() for r in reports))
-    return max(r.exit_code for r in reports)
+    return max(_exit_code(r) for r in reports)
+
+
+def _exit_code(report) -> int:
+    """The report's exit code; 1 also for a theorem whose chain does not reach its conclusion (not established),
+    even when every result it has holds (a missing link is not a result)."""
+    chain = getattr(report, "chain", None) or ()
+    conclusion = [link for link in chain if link.name == "conclusion"]
+    not_established = bool(conclusion) and (conclusion[-1].status is None or not conclusion[-1].status.is_proof)
+    return max(report.exit_code, 1 if not_established else 0)
 
 
 def _bar(enabled: bool, label: str, say=None):
@@ -400,6 +409,7 @@ def _simulate(args) -> int:
     for ex in examples:  # refuse bad values, histories and step counts before integrating anything
         ex.prepare(values, t_end=args.t_end, histories=histories)
         if isinstance(ex, FigureExample) and ex.envelope is not None:
+            _constant_histories(ex, histories)
             ex.chi_used()  # ‖χ‖_τ of the history used: a history it cannot take is refused now
     tty = not args.json and not args.quiet and sys.stderr.isatty()
     say = _progress(not args.quiet)
@@ -446,8 +456,20 @@ def _versions(names=("lkverify", "numpy", "scipy", "sympy")) -> dict:
     return out
 
 
+def _constant_histories(ex, histories) -> None:
+    """Refuse a time-varying ``--history`` for an example whose envelope needs ‖χ‖_τ of a constant history."""
+    for name, value in histories.items():
+        if getattr(value, "free_symbols", None):
+            raise InputError(f"--history {name}: the envelope of {ex.qualified_name} is computed from ‖χ‖_τ of a "
+                             f"constant initial history; got the time-varying {_history_json({name: value})[name]}; "
+                             f"pass a constant vector, e.g. --history {name}=[0.1,0.1,0.1], or simulate an "
+                             f"example without an envelope (aleksandrov2023.fig6)")
+
+
 def _history_json(history) -> dict:
+    """State name → the history as JSON: a flat list of numbers, or of strings for entries in t."""
     import numpy as np
+    import sympy
 
     out = {}
     for k, v in dict(history).items():
@@ -455,7 +477,7 @@ def _history_json(history) -> dict:
             a = np.asarray(v, dtype=float)
             out[k] = (a.ravel() if a.ndim == 2 and a.shape[1] == 1 else a).tolist()  # a column vector: flat
         except (TypeError, ValueError):
-            out[k] = str(v)
+            out[k] = [str(x) for x in v] if isinstance(v, sympy.MatrixBase) else str(v)
     return out
 
 
@@ -519,7 +541,10 @@ def _setup_lines(ex, args, histories) -> list:
 
 def _is_vector(v) -> bool:
     import numpy as np
+    import sympy
 
+    if isinstance(v, sympy.MatrixBase):  # also one with entries in t (a time-varying history)
+        return True
     try:
         np.asarray(v, dtype=float)
         return True

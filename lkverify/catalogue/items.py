@@ -166,6 +166,9 @@ class Theorem(Item):
         twice = sorted({n for n in names if names.count(n) > 1})
         if twice:
             problems.append(f"hypotheses and claims need distinct names, got {', '.join(map(repr, twice))} twice")
+        if not (hypotheses or claims or printed or bounds or steps):
+            problems.append("expected at least one hypothesis, claim or bound step to check, got none; declare "
+                            "hypotheses=[Hypothesis(...)] or claims=[DerivativeClaim(...)]")
         if problems:
             raise InputError(f"theorem {name}: " + "; ".join(problems))
         self.name = name

@@ -260,8 +260,9 @@ def _guarded(load, where, load_limit: float | None) -> None:
     try:
         with limit.enforced():
             load()
-    except InputError as exc:
-        raise InputError(_one_line(exc)) from exc
+    except InputError as exc:  # e.g. a Theorem refused where the file declares it: say which file
+        text = _one_line(exc)
+        raise InputError(text if text.startswith(str(where)) else f"{where}: {text}") from exc
     except BudgetExceeded:
         raise InputError(f"{where}: the proof file did not finish loading within the load limit of "
                          f"{load_limit:g} s (an endless loop or a long computation at import?); expected a "

@@ -75,8 +75,20 @@ def show_value(v) -> str:
 
 
 def show_vector(v) -> str:
-    """A constant vector: 0.1(1,1,1) when the components are equal, else (a, b, c) to 4 digits."""
-    a = np.asarray(v, dtype=float).ravel()
+    """A constant vector: 0.1(1,1,1) when the components are equal, else (a, b, c) to 4 digits.
+
+    A vector with entries in t (a time-varying history) is shown entry by entry: (sin(t), 0, 0).
+
+    >>> import sympy
+    >>> show_vector([0.1, 0.1, 0.1]), show_vector(sympy.Matrix([sympy.sin(sympy.Symbol("t")), 0, -1]))
+    ('0.1(1,1,1)', '(sin(t), 0, −1)')
+    """
+    try:
+        a = np.asarray(v, dtype=float).ravel()
+    except (TypeError, ValueError):  # entries in t: not numbers
+        import sympy
+
+        return "(" + ", ".join(show_value(x) for x in sympy.Matrix(v)) + ")"
     if a.size > 1 and np.allclose(a, a[0], rtol=0, atol=1e-12) and a[0] != 0:
         c = a[0]
         return ("(" + ",".join("1" for _ in a) + ")") if c == 1 else f"{c:g}(" + ",".join("1" for _ in a) + ")"

@@ -125,6 +125,13 @@ def _example_history(s) -> str:
     return f"{s.name}={comps if s.dim == 1 else '[' + comps + ']'}"
 
 
+def _numpy_values(lf, s_) -> np.ndarray:
+    """A lambdified history at ``s_`` in NumPy floats: a pole or a log of a negative number is inf/NaN (refused
+    by the finiteness checks), never a ZeroDivisionError of Python floats or a RuntimeWarning on stderr."""
+    with np.errstate(all="ignore"):
+        return np.asarray(lf(np.asarray(s_, dtype=float)), dtype=float)
+
+
 def _history_function(system: System, history: Mapping[str, object], layout: dict, n: int):
     """The initial history as phi(s) → state vector (validated)."""
     known = {s.name: s for s in system.states}
@@ -167,17 +174,23 @@ def _history_function(system: System, history: Mapping[str, object], layout: dic
                 raise InputError(f"history of {s.name}: expected an expression in t only, got symbols {sorted(map(str, extra))}")
             if m.free_symbols:
                 lf = sympy.lambdify([t], list(m), modules="numpy")
-                fn = lambda s_, lf=lf: np.asarray(lf(s_), dtype=float)  # noqa: E731
+                fn = lambda s_, lf=lf: _numpy_values(lf, s_)  # noqa: E731
             else:
                 const = np.array([float(v) for v in m], dtype=float)
                 fn = lambda s_, c=const: c  # noqa: E731
-        v = np.asarray(fn(0.0), dtype=float).ravel()
+        try:
+            v = np.asarray(fn(0.0), dtype=float).ravel()
+        except (ArithmeticError, TypeError, ValueError) as exc:
+            raise InputError(f"history of {s.name}: expected values at t0 = 0, got {type(exc).__name__}: {exc}; "
+                             f"pass e.g. the history {_example_history(s)}", topic="history",
+                             example=_example_history(s)) from None
         if v.shape != (s.dim,):
             raise InputError(f"history of {s.name}: expected {s.dim} components, got {v.size}; "
                              f"pass e.g. the history {_example_history(s)}", topic="history",
                              example=_example_history(s))
         if not np.all(np.isfinite(v)):
-            raise InputError(f"history of {s.name}: not finite at t0: {v}")
+            raise InputError(f"history of {s.name}: expected finite values, got {v} (not finite at t0); pass "
+                             f"e.g. the history {_example_history(s)}", topic="history", example=_example_history(s))
         parts.append((layout[s.name], fn))
     frames = []
     for s in system.states:

@@ -93,7 +93,8 @@ def test_time_varying_delay_from_the_command_line(tmp_path, capsys):
         wrong = Theorem("wrong", system=sys_, functional=V, claims=[DerivativeClaim(
             "Vdot", V, sys_, [Term(-2 * a * y(t - h(t))[0] ** 2)])])
     """))
-    assert main(["check", f"{proof}::right", "--set", "h=1/2 + sin(t)/4", "--json"]) == 0  # every result holds
+    # every result holds, but V ≥ φ and V̇ ≤ −ψ are missing: not established, exit 1 (issue 22)
+    assert main(["check", f"{proof}::right", "--set", "h=1/2 + sin(t)/4", "--json"]) == 1
     out = capsys.readouterr().out
     assert '"status": "exact"' in out
     assert main(["check", f"{proof}::wrong", "--set", "h=1/2 + sin(t)/4", "--json"]) == 1
@@ -208,8 +209,8 @@ def test_readme_proof_is_not_established_and_names_the_missing_links(values):
 
 def test_theorem_without_claims_is_not_established():
     Q, x, system, V, claim, hyp = _readme_theorem()
-    report = Theorem("empty", system=system).run({})
-    assert "established" not in report.verdict.replace("not established", "")
+    with pytest.raises(InputError, match="expected at least one hypothesis"):  # refused when declared (issue 22)
+        Theorem("empty", system=system)
 
 
 def test_claim_along_another_system_is_bad_input():
