@@ -13,6 +13,8 @@
     solved with cvxpy + Clarabel, rounded to rationals and re-verified exactly;
 :mod:`.interval`
     one certificate for every delay of an interval (concavity in h: exact; else arb pieces);
+:mod:`.instability`
+    instability certified: a characteristic root enclosed in the open right half-plane (interval Newton in arb);
 :mod:`.margin`
     the largest (and smallest) delay of a stability interval with a verified certificate, by bisection;
 :mod:`.linearise`
@@ -27,6 +29,7 @@ from .crossing import Crossing, StabilityIntervals, crossing_frequencies, stabil
 from .hierarchy import (LmiCertificate, LmiResult, certify_delay, check_certificate, method_name, quick_check,
                         solve_certificate)
 from .interval import IntervalCertificate, certify_cover, certify_interval
+from .instability import Instability, RootBall, newton_test, refute_stability
 from .margin import CertifiedInterval, certified_interval
 from .linearise import Linearisation, linearise, linearise_at, tangent_basis
 from .family import LinearBatch, LinearFamily, linear_family
@@ -42,4 +45,5 @@ __all__ = [
     "parse_delay", "rightmost_roots", "spectral_abscissa", "stability_intervals",
     "Linearisation", "linearise", "linearise_at", "tangent_basis",
     "LinearBatch", "LinearFamily", "linear_family",
+    "Instability", "RootBall", "newton_test", "refute_stability",
 ]

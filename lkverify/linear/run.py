@@ -19,6 +19,7 @@ from ..report.results import Report, Result
 from ..status import Status
 from .crossing import stability_intervals
 from .hierarchy import certify_delay, method_name
+from .instability import refute_stability
 from .margin import certified_interval
 from .model import LinearDelaySystem, parse_delay
 from .spectrum import rightmost_roots
@@ -107,12 +108,18 @@ def linear_report(values: dict, *, orders=DEFAULT_ORDERS, h_max: float = 20.0, h
     Report
         Results of kind ``linear``: the spectral results ``estimated``; each order's certified
         delays ``exact`` (rational data) or ``certified`` when verified, ``undecided`` otherwise.
+        With ``h``: "stable at h" is ``failed`` when a characteristic root is certified in the
+        open right half-plane (:func:`~lkverify.linear.instability.refute_stability`; no LMI is
+        solved then), ``exact``/``certified`` when an order's LMI verified, else ``undecided``.
 
     Examples
     --------
     >>> rep = linear_report({"A": [[-1]], "Ad": [["0.5"]]}, orders=(1,), h="2", h_max=5)
-    >>> rep.results[-1].status.value, rep.exit_code
-    ('exact', 0)
+    >>> rep.results[-1].name, rep.results[-1].status.value, rep.exit_code
+    ('stable at h = 2', 'exact', 0)
+    >>> rep = linear_report({"A": [[1]], "Ad": [["-1/2"]]}, orders=(1,), h="1", h_max=5)   # x′ = x − x(t−1)/2
+    >>> rep.results[-1].status.value, rep.exit_code, rep.verdict[:40]
+    ('failed', 1, 'unstable at h = 1: a characteristic root')
     """
     say = say or (lambda *a, **k: None)
     if not (isinstance(h_max, (int, float)) and math.isfinite(h_max) and h_max > 0):
@@ -141,21 +148,10 @@ def linear_report(values: dict, *, orders=DEFAULT_ORDERS, h_max: float = 20.0, h
                               f"the LMI hierarchy here covers constant kernels; this kernel has degree "
                               f"{system.kernel_order} (the spectral results above still hold as estimates)"))
         orders = ()
-    for order in orders:
-        name = method_name(order)
-        say(f"LMI {name}")
-        if hq is not None:
-            res = certify_delay(system, h, order=order)        # h as given: a float stays at most certified
-            results.append(Result("linear", f"{name} at h = {hq}", res.status, float(hq),
-                                  f"{res.detail} (solve {res.solve_seconds:.2f} s, check {res.check_seconds:.2f} s)"))
-            continue
-        if target is None:
-            results.append(Result("linear", f"certified delays ({name})", Status.UNDECIDED, None,
-                                  f"no stability interval in [0, {h_max:g}]: nothing to certify"))
-            continue
-        m = certified_interval(system, target, order=order)
-        value = {"value": m.upper, "lower": m.lower, "upper": m.upper, "solves": m.solves, "seconds": m.seconds}
-        results.append(Result("linear", f"certified delays ({name})", m.status, value, m.detail))
+    if hq is not None:
+        results += _at_delay(system, h, hq, orders, say)
+    else:
+        results += _margins(system, target, orders, h_max, say)
     verdict = _verdict(results, iv)
     details = ()
     if plot is not None:
@@ -167,7 +163,61 @@ def linear_report(values: dict, *, orders=DEFAULT_ORDERS, h_max: float = 20.0, h
     return Report("linear", dict(values), tuple(results), verdict, text_details=details)
 
 
+def _at_delay(system, h, hq, orders, say) -> list:
+    """At one delay: a right half-plane root certified (``failed``), else each order's LMI; then "stable at h"."""
+    say("instability: interval Newton on the rightmost roots")
+    inst = refute_stability(system, h)
+    name = f"stable at h = {hq}"
+    if inst.refuted:
+        root = inst.root
+        value = {"h": hq, "root": {"real": list(root.real), "imag": list(root.imag), "ball": root.enclosure}}
+        return [Result("linear", name, Status.FAILED, value,
+                       f"{inst.detail}; no LMI is solved at this delay (no Lyapunov–Krasovskii certificate exists "
+                       f"for an unstable system)")]
+    rows = []
+    for order in orders:
+        label = method_name(order)
+        say(f"LMI {label}")
+        res = certify_delay(system, h, order=order)        # h as given: a float stays at most certified
+        rows.append(Result("linear", f"{label} at h = {hq}", res.status, float(hq),
+                           f"{res.detail} (solve {res.solve_seconds:.2f} s, check {res.check_seconds:.2f} s)"))
+    proved = [r for r in rows if r.status.is_proof]
+    if proved:
+        best = min(proved, key=lambda r: r.status is not Status.EXACT)
+        rows.append(Result("linear", name, best.status, float(hq), f"stability at h = {hq} proved by {best.name}"))
+    else:
+        rows.append(Result("linear", name, Status.UNDECIDED, float(hq),
+                           f"neither proved (no LMI order verified) nor refuted ({inst.detail})"))
+    return rows
+
+
+def _margins(system, target, orders, h_max, say) -> list:
+    """Per order: the certified delays inside the first stability interval (bisection, ends verified)."""
+    rows = []
+    for order in orders:
+        name = method_name(order)
+        say(f"LMI {name}")
+        if target is None:
+            rows.append(Result("linear", f"certified delays ({name})", Status.UNDECIDED, None,
+                               f"no stability interval in [0, {h_max:g}]: nothing to certify"))
+            continue
+        m = certified_interval(system, target, order=order)
+        value = {"value": m.upper, "lower": m.lower, "upper": m.upper, "solves": m.solves, "seconds": m.seconds}
+        rows.append(Result("linear", f"certified delays ({name})", m.status, value, m.detail))
+    return rows
+
+
 def _verdict(results, iv) -> str:
+    at = next((r for r in results if r.name.startswith("stable at h")), None)
+    if at is not None:
+        h = at.name[len("stable at h = "):]
+        if at.status is Status.FAILED:
+            root = at.value["root"]
+            return (f"unstable at h = {h}: a characteristic root certified in the open right half-plane, "
+                    f"s = {root['ball']} (Re s ≥ {root['real'][0]:.6g} > 0)")
+        if at.status.is_proof:
+            return f"stable at h = {h} ({at.detail}, {at.status.value})"
+        return f"stability at h = {h} undecided: {at.detail}"
     certified = [r for r in results if r.name.startswith("certified") and r.status.is_proof]
     spectral = (f"delay margin {iv.margin:.7g} (spectral, estimated)" if iv.margin is not None else
                 ("stability intervals " + ", ".join(f"({a:.7g}, {b:.7g})" for a, b in iv.intervals)

@@ -22,11 +22,18 @@ def test_json_and_plot(tmp_path, capsys):
     assert "versions" in data and data["item"] == "linear"
 
 
-def test_one_delay_above_the_margin_is_not_certified(capsys):
+def test_one_delay_above_the_margin_is_refuted_by_a_certified_root(capsys):
     code = main(["linear", *CLASSIC, "--orders", "2", "--h", "6.2", "--h-max", "8", "--quiet"])
     text = capsys.readouterr().out
-    assert code == 1  # undecided: no certificate beyond the margin
-    assert "undecided" in text and "spectral abscissa at h = 31/5" in text
+    assert code == 1  # failed: a root in the open right half-plane, no LMI solved
+    assert "stable at h = 31/5" in text and "failed" in text and "spectral abscissa at h = 31/5" in text
+    assert "bessel-legendre" not in text
+
+
+def test_a_stable_delay_beyond_the_orders_reach_is_undecided_not_failed(capsys):
+    code = main(["linear", *CLASSIC, "--orders", "0", "--h", "6", "--h-max", "8", "--quiet"])   # Jensen: ≤ 4.47
+    text = capsys.readouterr().out
+    assert code == 1 and "undecided" in text and "failed" not in text
 
 
 @pytest.mark.parametrize("args, fragment", [
