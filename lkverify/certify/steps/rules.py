@@ -1543,7 +1543,7 @@ class Template(Rule):
         kappa = sympy.Rational(res.certified) if proved else None
         conds.append(_cond(f"κ = sup = {res.certified:.6g} certified (estimate {res.estimate:.6g}, gap "
                            f"{res.gap:.2g}, {res.boxes} boxes)" if proved else "κ certified", proved or None,
-                           "no finite certified bound in the budget", certified=True))
+                           "" if proved else "no finite certified bound in the work limit", certified=True))
         if not proved:
             return Application(self.name, None, tuple(conds))
         mono = sympy.Mul(*[ctx.measure(n).symbol ** p for n, p in self.exponents.items()])
