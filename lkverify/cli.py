@@ -19,7 +19,7 @@ Progress lines go to stderr (whether or not it is a terminal) once a job has run
 
 Budgets (``--budget SECONDS``) are positive finite numbers up to
 :data:`lkverify.options.MAX_BUDGET_SECONDS` (1e6 s); ``inf`` and larger values are
-refused.  ``check``: per identity (default 60 s).  ``constants``: the whole job
+refused.  ``check``: the whole check, your own cap (default none: deterministic work limits decide).  ``constants``: the whole job
 (default 150 s).  ``simulate``: all runs of the example together (default
 :data:`lkverify.catalogue.examples.DEFAULT_SIMULATE_BUDGET`).  Loading a proof file is not
 covered by ``--budget``: it has its own limit, ``--load-limit`` (default 60 s).
@@ -99,9 +99,9 @@ def _build_parser() -> argparse.ArgumentParser:
                    help="a parameter value: a number, diag(2,2,2), [[2,0],[0,2]], or an expression in t")
     c.add_argument("--json", action="store_true", help=JSON_HELP)
     _add_quiet(c)
-    c.add_argument("--budget", type=_seconds, default=60.0, metavar="SECONDS",
-                   help="time budget of the whole check (hypotheses and identities); what is unfinished when it is "
-                        "spent is undecided (default 60, at most 1e6)")
+    c.add_argument("--budget", type=_seconds, default=None, metavar="SECONDS",
+                   help="your own time cap of the whole check; what it cuts is undecided (default: none -- the check "
+                        "stops at its deterministic work limits, so its verdict is the same on any machine; at most 1e6)")
     _add_load_limit(c)
     s = sub.add_parser("simulate", help="integrate a numerical example and check the paper's claims about it")
     s.add_argument("item", help="an example (aleksandrov2023.fig6), or path/to/file.py[::item]")

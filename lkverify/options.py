@@ -16,11 +16,23 @@ The operating system's interval timer cannot be armed arbitrarily far ahead
 :data:`TIMER_CAP_SECONDS` ahead and re-armed when it fires before the deadline.
 ``Deadline(math.inf)`` is the same as ``Deadline(None)`` (unlimited).  The command
 line accepts budgets up to :data:`MAX_BUDGET_SECONDS` and refuses larger ones.
+
+Work limits, not wall-clock time, decide the catalogue's results.  Inside
+:func:`work_limits` (every catalogue item's ``run`` enters it) the seconds of internal
+ceilings -- a :class:`Deadline` created without ``cap=True``, a :class:`Budget`'s
+``seconds`` read through :func:`ceiling` -- are ignored: each job stops at its
+deterministic work limit (boxes, iterations, optimiser evaluations, starts, seeds), so a
+verdict is the same on an idle and on a loaded machine.  The only wall-clock limit there is
+the user's own cap (``--budget SECONDS``, ``Item.run(budget=…)``): a ``Deadline(…, cap=True)``,
+enforced between the steps and by ``SIGALRM`` inside them; what it cuts is ``undecided``
+with the phase it cut.  Outside :func:`work_limits` (a direct call of a checker with
+``budget=``) every deadline is enforced as given.
 """
 
 from __future__ import annotations
 
 import contextlib
+import contextvars
 import dataclasses
 import math
 import numbers
@@ -31,7 +43,8 @@ import time
 
 from .errors import InputError, _OwnNames
 
-__all__ = ["Accuracy", "Budget", "BudgetExceeded", "Deadline", "MAX_BUDGET_SECONDS", "TIMER_CAP_SECONDS", "RETRY_SECONDS"]
+__all__ = ["Accuracy", "Budget", "BudgetExceeded", "Deadline", "MAX_BUDGET_SECONDS", "TIMER_CAP_SECONDS", "RETRY_SECONDS",
+           "ceiling", "wall_clock_ceilings", "work_limits"]
 
 #: the largest ``--budget`` the command line accepts (seconds, about 11.6 days)
 MAX_BUDGET_SECONDS = 1e6
@@ -41,6 +54,40 @@ TIMER_CAP_SECONDS = 1e6
 RETRY_SECONDS = 0.05
 
 _active: list = []          # enforced deadlines, outermost first (main thread only)
+_work_limits = contextvars.ContextVar("lkverify_work_limits", default=0)  # depth of work_limits() blocks
+
+
+@contextlib.contextmanager
+def work_limits():
+    """Run a block on deterministic work limits: internal time ceilings are ignored inside it.
+
+    A :class:`Deadline` created inside without ``cap=True`` is unlimited, and :func:`ceiling`
+    returns None: only the jobs' own work limits (boxes, iterations, starts) and a user's cap
+    (``Deadline(seconds, cap=True)``) stop the work.  Blocks nest.
+
+    Examples
+    --------
+    >>> with work_limits():
+    ...     Deadline(1e-9).seconds is None, Deadline(5, cap=True).seconds, ceiling(30.0), wall_clock_ceilings()
+    (True, 5.0, None, False)
+    >>> Deadline(5).seconds, ceiling(30.0), wall_clock_ceilings()
+    (5.0, 30.0, True)
+    """
+    token = _work_limits.set(_work_limits.get() + 1)
+    try:
+        yield
+    finally:
+        _work_limits.reset(token)
+
+
+def wall_clock_ceilings() -> bool:
+    """True outside :func:`work_limits`: internal time ceilings are enforced."""
+    return _work_limits.get() == 0
+
+
+def ceiling(seconds: float | None) -> float | None:
+    """An internal time ceiling in seconds, or None (no wall-clock limit) inside :func:`work_limits`."""
+    return seconds if wall_clock_ceilings() else None
 _saved_handler = [None]     # the SIGALRM handler before the outermost enforced block
 
 
@@ -74,6 +121,9 @@ class Deadline:
     ----------
     seconds : float or None
         A positive number of seconds; ``None`` or ``inf`` for no limit.
+    cap : bool, default False
+        The user's own cap (``--budget``): enforced also inside :func:`work_limits`, where
+        any other deadline is an internal ceiling and unlimited.
 
     Raises
     ------
@@ -92,13 +142,14 @@ class Deadline:
     True
     """
 
-    def __init__(self, seconds: float | None):
+    def __init__(self, seconds: float | None, *, cap: bool = False):
         if seconds is not None:
             if isinstance(seconds, bool) or not isinstance(seconds, numbers.Real) or not seconds > 0:
                 raise InputError(f"budget: expected a positive number of seconds (or None for no limit), "
                                  f"got {seconds!r}")
             seconds = None if math.isinf(seconds) else float(seconds)
-        self.seconds = seconds
+        self.cap = bool(cap)
+        self.seconds = seconds if cap else ceiling(seconds)
         self.start = time.monotonic()
 
     @property
@@ -250,9 +301,9 @@ class Budget:
         if b is not None and (isinstance(b, bool) or not isinstance(b, numbers.Integral) or b < 1):
             raise InputError(f"Budget.boxes: expected a positive integer or None, got {b!r}")
 
-    def deadline(self) -> Deadline:
-        """A :class:`Deadline` starting now for :attr:`seconds`."""
-        return Deadline(self.seconds)
+    def deadline(self, *, cap: bool = False) -> Deadline:
+        """A :class:`Deadline` starting now for :attr:`seconds` (``cap``: the user's own, see :class:`Deadline`)."""
+        return Deadline(self.seconds, cap=cap)
 
     @classmethod
     def of(cls, value) -> "Budget":

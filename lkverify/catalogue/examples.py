@@ -165,10 +165,14 @@ class Example(Item):
     def run(self, values: Mapping | None = None, *, budget: Budget | float | None = None, t_end: float | None = None,
             progress: Callable[[str], None] | None = None, envelope: bool = True,
             trajectories: Mapping[str, Trajectory] | None = None) -> Report:
-        """Simulate (all runs share ``budget``), summarise every run and check every claim."""
+        """Simulate (all runs share ``budget``, the caller's own cap), summarise every run and check every claim.
+
+        The runs are bounded by their step limits (deterministic); ``budget`` (seconds, default None)
+        cuts them short (outcome ``budget``, undecided).
+        """
         if trajectories is None:
             trajectories = self.simulate(values, t_end=t_end, progress=progress,
-                                         deadline=Budget.of(budget).deadline() if budget is not None else None)
+                                         deadline=Budget.of(budget).deadline(cap=True) if budget is not None else None)
         results, cut = self._run_results(trajectories)
         self._claim_results(trajectories, cut, envelope, results)
         failed = [r.name for r in results if r.status is Status.FAILED]

@@ -34,6 +34,7 @@ from ..declare.parameters import Parameters
 from ..report.results import Report, Result
 from ..status import Status
 from ..declare.system import System
+from .links import Link, _best_step, _combined, _concluded, theorem_verdict
 
 __all__ = ["Check", "Item", "Link", "Theorem", "theorem_verdict"]
 
@@ -65,8 +66,9 @@ class Item:
     def qualified_name(self) -> str:
         return f"{self.paper}.{self.name}" if self.paper else self.name
 
-    def run(self, values: Mapping[str, object] | None = None, *, budget: float | None = 60.0,
+    def run(self, values: Mapping[str, object] | None = None, *, budget: float | None = None,
             progress: Callable[[str], None] | None = None) -> Report:
+        """Check the item on deterministic work limits; ``budget`` (seconds) is the caller's own cap."""
         raise NotImplementedError
 
     def run_constants(self, values: Mapping[str, object] | None = None, *, budget: float = 120.0,
@@ -190,86 +192,175 @@ class Theorem(Item):
     def parameters(self) -> Parameters:
         return self.system.parameters
 
-    def run(self, values: Mapping[str, object] | None = None, *, budget: float | None = 60.0,
+    def run(self, values: Mapping[str, object] | None = None, *, budget: float | None = None,
             progress: Callable[[str], None] | None = None) -> Report:
-        """Check the hypotheses (at the given values, else the paper's defaults) and the claims.
+        """Check the hypotheses (at the given values, else the paper's defaults), the claims and the chain.
 
         Identity claims are checked with the *given* values substituted and every
         other parameter left symbolic, so an ``exact`` identity holds for all of them.
+        The work is bounded by deterministic work limits (:func:`lkverify.options.work_limits`);
+        ``budget`` (seconds, default None) is the caller's own wall-clock cap: what it cuts is
+        ``undecided`` ("the budget was spent before this step"), never missing.  When the
+        proof's documented choices do not close the chain and the theorem's constants job can
+        search them (:meth:`lkverify.certify.constants.ConstantsJob.search_choices`), the chain
+        is checked again at the choices found.
 
         Raises
         ------
         InputError
             Unknown parameter names or inadmissible values.
         """
-        from ..options import Budget, Deadline
+        from ..options import Budget, Deadline, work_limits
 
-        progress = progress or (lambda msg: None)
-        budget = Budget.of(budget).seconds  # a Budget or seconds
-        deadline = Deadline(budget)  # one budget for the whole run: hypotheses and every claim
+        with work_limits():
+            cap = Deadline(Budget.of(budget).seconds, cap=True)
+            return self._run(values or {}, cap, progress or (lambda msg: None))
+
+    def _run(self, values: Mapping, cap, progress) -> Report:
         P = self.parameters
-        given = P.resolve(values or {}, use_defaults=False)
-        everything = P.resolve(values or {}, use_defaults=True)
+        given = P.resolve(values, use_defaults=False)
+        everything = P.resolve(values, use_defaults=True)
+        results, details = self._statements(given, everything, cap, progress)
+        definite, upper = {}, None
+        stop = _stopped_by_hypotheses(self.hypotheses, results)  # a failed hypothesis: no costly link is started
+        if stop is not None:
+            return self._stopped(results, details, everything, stop)
+        if self.bounds and self.functional is not None:
+            upper = quadratic_upper_bound(self.functional, self.system, everything)
+        floated_all = P.float_symbols(everything)
+        for k, step in enumerate(self.bounds):
+            progress(f"{self.qualified_name}: bound step {k + 1}/{len(self.bounds)} {step.name}")
+            res, cut = _capped(cap, lambda: (step.check(everything), step.positive_definite_bound(everything)
+                                             if step.role is not None else None))
+            if cut:
+                results.append(Result("bound", step.name, Status.UNDECIDED, None, _cut_text(cap, cut)))
+                continue
+            results.append(_not_exact_if_floats(res[0].to_result(), _symbols_of(step), floated_all))
+            if res[1] is not None:
+                definite[step.name] = res[1]
+        chosen, run = {}, _StepsRun([], {}, {}, None)
+        if self.steps:
+            chosen = self.chosen(values)
+            run = self._steps_run({**chosen, **dict(values)}, cap, progress)
+            found = self._search(values, chosen, results, run, definite, upper, cap, progress)
+            if found is not None:
+                chosen, run = found
+            everything = P.resolve({**chosen, **dict(values)}, use_defaults=True)
+        results = results + run.results
+        links = self.chain(results, definite=definite, upper=upper, steps=run.checked, decay=run.decay, cut=run.cut)
+        return Report(self.qualified_name, self.shown(everything, chosen), tuple(results),
+                      self._verdict(results, definite, upper, run.checked, run.decay, cut=run.cut,
+                                    at=run.at),
+                      tuple(details), links)
+
+    def _stopped(self, results, details, everything, stop: str) -> Report:
+        """The report of a run whose hypotheses failed: the bound steps, choices and decay are not started."""
+        results = results + [Result("bound", step.name, Status.UNDECIDED, None, stop)
+                             for step in (*self.bounds, *self.steps)]
+        cut = {step.role: stop for step in self.steps}
+        decay = None if self.decay is None else Link(getattr(self.decay, "link", "decay on the region"),
+                                                     Status.UNDECIDED, stop)
+        links = self.chain(results, steps={}, decay=decay, cut=cut)
+        return Report(self.qualified_name, self.shown(everything, {}), tuple(results),
+                      self._verdict(results, {}, None, {}, decay, cut=cut), tuple(details), links)
+
+    def _statements(self, given, everything, cap, progress) -> tuple[list, list]:
+        """The hypotheses at every value, the claims at the given ones: (results, details of differences)."""
+        from ..options import Deadline
+
+        P = self.parameters
         results: list[Result] = []
         progress(f"{self.qualified_name}: hypotheses")
         sub_all = P.substitution(everything)
         floated_all, floated_given = P.float_symbols(everything), P.float_symbols(given)
         for h in self.hypotheses:
-            res = h.evaluate(sub_all, budget=_left(deadline))
-            results.append(_not_exact_if_floats(res, _symbols_of(h), floated_all))
+            res, cut = _capped(cap, lambda: h.evaluate(sub_all, budget=None))
+            results.append(Result("hypothesis", h.name, Status.UNDECIDED, None, _cut_text(cap, cut, "hypothesis"))
+                           if cut else _not_exact_if_floats(res, _symbols_of(h), floated_all))
         details = []
         sub_given = P.substitution(given)
         every_claim = (*self.claims, *self.printed)
+        unlimited = Deadline(None)
         for k, claim in enumerate(every_claim):
             progress(f"{self.qualified_name}: identity {k + 1}/{len(every_claim)} {claim.name}")
-            if deadline.expired:
-                results.append(Result("identity", claim.name, Status.UNDECIDED, None,
-                                      f"not checked: the time budget of {budget:g} s was spent before this claim"))
+            res, cut = _capped(cap, lambda: _check_claim(claim, P, given, sub_given, unlimited))
+            if cut:
+                results.append(Result("identity", claim.name, Status.UNDECIDED, None, _cut_text(cap, cut, "claim")))
                 continue
-            res = _check_claim(claim, P, given, sub_given, deadline)
             results.append(_not_exact_if_floats(
                 Result("identity", claim.name, res.status, res.to_json(),
                        f"{claim.description + ': ' if claim.description else ''}{res.detail}"),
                 _symbols_of(claim), floated_given))
             if res.differences:
                 details.append(res.as_text())
-        definite, upper = {}, None
-        if self.bounds and self.functional is not None:
-            upper = quadratic_upper_bound(self.functional, self.system, everything)
-        for k, step in enumerate(self.bounds):
-            progress(f"{self.qualified_name}: bound step {k + 1}/{len(self.bounds)} {step.name}")
-            res = step.check(everything)
-            results.append(_not_exact_if_floats(res.to_result(), _symbols_of(step), floated_all))
-            if step.role is not None:
-                definite[step.name] = step.positive_definite_bound(everything)
-        checked = {}
-        chosen = {}
-        if self.steps:
-            chosen = self.chosen(values or {})
-            everything = P.resolve({**chosen, **dict(values or {})}, use_defaults=True)
-            floated_all = P.float_symbols(everything)
+        return results, details
+
+    def _steps_run(self, values: Mapping, cap, progress) -> "_StepsRun":
+        """The bound steps V ≥ L, V ≤ U, V̇ ≤ W and the decay at these values (the choices included)."""
+        P = self.parameters
+        everything = P.resolve(values, use_defaults=True)
+        floated_all = P.float_symbols(everything)
+        results, checked, cut = [], {}, {}
         for k, step in enumerate(self.steps):
             progress(f"{self.qualified_name}: bound step {k + 1}/{len(self.steps)} {step.name}")
-            if deadline.expired:
-                results.append(Result("bound", step.name, Status.UNDECIDED, None,
-                                      f"not checked: the time budget of {budget:g} s was spent before this step"))
+            res, how = _capped(cap, lambda: step.check(everything))
+            if how:
+                results.append(Result("bound", step.name, Status.UNDECIDED, None, _cut_text(cap, how)))
+                cut[step.role] = _cut_text(cap, how)
                 continue
-            res = step.check(everything, budget=_left(deadline))
             results += [_not_exact_if_floats(r, _symbols_of(step), floated_all) for r in res.results()]
             checked[step.role] = (step, res)
         decay = None
+        link = getattr(self.decay, "link", "decay on the region (V̇ ≤ −c̃V^p, envelope)")
         if self.decay is not None and all(r in checked and checked[r][1].status.is_proof
                                           for r in ("lower", "upper", "vdot")):
             progress(f"{self.qualified_name}: {getattr(self.decay, 'link', 'the decay on the region')}")
-            rows, status, detail = self.decay.certify(checked, everything, budget=_left(deadline),
-                                                      progress=progress)
+            out, how = _capped(cap, lambda: self.decay.certify(checked, everything, budget=None, progress=progress))
+            rows, status, detail = ([], Status.UNDECIDED, _cut_text(cap, how, "link")) if how else out
             if not rows and not status.is_proof:  # a refuted or undecided conclusion is a result too (exit code)
                 rows = [Result("region", getattr(self.decay, "link", "decay on the region"), status, None, detail)]
             results += rows
-            decay = Link(getattr(self.decay, "link", "decay on the region (V̇ ≤ −c̃V^p, envelope)"), status, detail)
-        return Report(self.qualified_name, self.shown(everything, chosen), tuple(results),
-                      self._verdict(results, definite, upper, checked, decay), tuple(details),
-                      self.chain(results, definite=definite, upper=upper, steps=checked, decay=decay))
+            decay = Link(link, status, detail)
+        elif self.decay is not None and cut:
+            decay = Link(link, Status.UNDECIDED, "the budget was spent before this link")
+        return _StepsRun(results, checked, cut, decay)
+
+    def _search(self, values, chosen, results, run, definite, upper, cap, progress):
+        """``(choices, run)`` at the choices the constants job finds when the documented ones do not close
+        the chain (the hypotheses and V̇ proved, no choice set by the user, nothing cut by the budget);
+        ``(chosen, run)`` marked "at the searched choices" when it finds none; None when no search applies."""
+        job = self.constants
+        search = getattr(job, "search_choices", None)
+        free = list(getattr(job, "free", None) or {})
+        if search is None or not getattr(job, "steps", False) or any(k in values for k in free) or run.cut:
+            return None
+        links = self.chain([*results, *run.results], definite=definite, upper=upper, steps=run.checked,
+                           decay=run.decay)
+        bad = [link for link in links if link.name != "conclusion" and (link.status is None
+                                                                       or not link.status.is_proof)]
+        if not bad or bad[0].name in ("hypotheses", "V̇ along the system"):
+            return None
+        first = bad[0]
+        why = f"{first.name}: {first.status or 'missing'}"
+        shown = ", ".join(f"{k} = {v}" for k, v in chosen.items() if k in free)
+        progress(f"{self.qualified_name}: the documented choices do not close the chain ({why}); searching "
+                 + ", ".join(free))
+        everything = self.parameters.resolve(dict(values), use_defaults=True)
+        out, how = _capped(cap, lambda: search(self.qualified_name, everything, progress=progress))
+        found, detail = out if not how else (None, _cut_text(cap, how, "search"))
+        if found is None:
+            row = Result("region", "choices", Status.UNDECIDED, None,
+                         f"the documented choices ({shown}) do not close the chain ({why}); the search of "
+                         f"{', '.join(free)} found none that does: {detail}")
+            return chosen, dataclasses.replace(run, results=[*run.results, row], at="the searched choices")
+        found = {k: str(v) for k, v in found.items()}
+        again = self._steps_run({**chosen, **found, **dict(values)}, cap, progress)
+        row = Result("region", "choices", Status.ESTIMATED, dict(found),
+                     f"the documented choices ({shown}) do not close the chain ({why}); the chain is checked at "
+                     f"the choices found by the search ({', '.join(f'{k} = {v}' for k, v in found.items())}): "
+                     f"{detail}")
+        return {**chosen, **found}, dataclasses.replace(again, results=[row, *again.results],
+                                                        at="the searched choices")
 
     def chosen(self, values: Mapping) -> dict:
         """The proof's free choices at these values: the fixed ``choices``, or those its callable finds.
@@ -309,8 +400,11 @@ class Theorem(Item):
                 out[name] = _show(value)
         return out
 
-    def _verdict(self, results, definite=None, upper=None, steps=None, decay=None) -> str:
-        text = theorem_verdict(self.chain(results, definite=definite, upper=upper, steps=steps, decay=decay))
+    def _verdict(self, results, definite=None, upper=None, steps=None, decay=None, cut=None, at=None) -> str:
+        if at is None and self.steps and self.choices:
+            at = "these choices"
+        text = theorem_verdict(self.chain(results, definite=definite, upper=upper, steps=steps, decay=decay,
+                                          cut=cut), at=at)
         if decay is not None and text.startswith("established") and decay.status is not None \
                 and decay.status.is_proof:
             text += f"; on the certified region: {decay.detail}"
@@ -322,7 +416,7 @@ class Theorem(Item):
         return text
 
     def chain(self, results, *, definite: Mapping | None = None, upper=None, steps: Mapping | None = None,
-              decay: "Link | None" = None) -> tuple:
+              decay: "Link | None" = None, cut: Mapping | None = None) -> tuple:
         """The links from the functional to the conclusion, each with what was checked of it.
 
         Computed from the results, never from the author's ``unchecked`` list: a link
@@ -341,6 +435,8 @@ class Theorem(Item):
             Role → (TermwiseBound, ChainResult) of the checked estimates V ≥ L, V ≤ U, V̇ ≤ W.
         decay : Link, optional
             The certified decay of the checked estimates (:class:`~lkverify.certify.steps.chain.Decay`).
+        cut : mapping, optional
+            Role → why the budget cut that step: its link is ``undecided``, never missing.
 
         Returns
         -------
@@ -348,7 +444,9 @@ class Theorem(Item):
         """
         by_name = {r.name: r for r in results}
         hyps = [by_name[h.name] for h in self.hypotheses if h.name in by_name]
+        not_proved = [r for r in hyps if not r.status.is_proof]
         links = [Link("hypotheses", _combined([r.status for r in hyps]) if hyps else Status.EXACT,
+                      "; ".join(f"{r.name} {r.status}: {r.detail}" for r in not_proved) if not_proved else
                       f"{len(hyps)} hypothes{'is' if len(hyps) == 1 else 'es'} on the parameters"
                       if hyps else "none declared")]
         own = [c for c in self.claims if isinstance(c, DerivativeClaim) and self.functional is not None
@@ -367,7 +465,9 @@ class Theorem(Item):
             steps = dict(steps or {})
             for role, text in (("lower", "V ≥ L (bound step, term by term)"), ("upper", "V ≤ U (bound step, term by term)"),
                                ("vdot", "V̇ ≤ W on the region (bound step, term by term)")):
-                if role not in steps:
+                if role in (cut or {}):
+                    links.append(Link(text, Status.UNDECIDED, cut[role]))
+                elif role not in steps:
                     links.append(Link(text, None, "no bound step of this theorem states it"))
                 else:
                     step, res = steps[role]
@@ -398,33 +498,67 @@ class Theorem(Item):
         return _concluded(links, results, own, [c.name for c in self.printed])
 
 
-def _concluded(links: list, results, own, printed=()) -> tuple:
-    """The links with the intermediate identities and the conclusion appended."""
-    skip = {c.name for c in own} | set(printed)
-    others = [r for r in results if r.kind == "identity" and r.name not in skip]
-    if others:
-        links.append(Link("intermediate identities", _combined([r.status for r in others]),
-                          ", ".join(f"{r.name}: {r.status}" for r in others)))
-    ready = all(link.status is not None and link.status.is_proof for link in links)
-    links.append(Link("conclusion", Status.EXACT if ready else None,
-                      "follows from the links above" if ready else "rests on the links above"))
-    return tuple(links)
+def _stopped_by_hypotheses(hypotheses, results) -> str | None:
+    """Why the chain stops after the hypotheses (the failed ones, with their margins), or None when none failed.
 
-
-def _best_step(steps, by_name, definite):
-    """(status, detail) of the first step of a role whose statement and bound are both proved, else None."""
-    for b in steps:
-        st, bound = by_name[b.name].status, definite.get(b.name)
-        if st.is_proof and bound is not None and bound.status.is_proof:
-            status = Status.EXACT if st is Status.EXACT and bound.status is Status.EXACT else Status.CERTIFIED
-            return status, f"{b.name}: {st}; {bound.detail}"
-    return None
+    >>> from lkverify.certify.hypotheses import Hypothesis
+    >>> import sympy
+    >>> k = sympy.Symbol("k")
+    >>> _stopped_by_hypotheses([Hypothesis("k > 0", k)], [Result("hypothesis", "k > 0", Status.FAILED, -1, "margin -1")])
+    'not checked: the hypothesis k > 0 failed (margin -1), so the chain stops at the hypotheses'
+    """
+    names = {h.name for h in hypotheses}
+    failed = [r for r in results if r.kind == "hypothesis" and r.name in names and r.status is Status.FAILED]
+    if not failed:
+        return None
+    return (f"not checked: the hypothes{'is' if len(failed) == 1 else 'es'} "
+            + "; ".join(f"{r.name} failed ({r.detail})" for r in failed) + ", so the chain stops at the hypotheses")
 
 
 def _left(deadline):
     """The seconds left of a deadline (None: unlimited), never below a millisecond."""
     r = deadline.remaining
     return None if r is None else max(r, 1e-3)
+
+
+@dataclasses.dataclass(frozen=True)
+class _StepsRun:
+    """The bound steps and the decay of one run: rows, role → (step, result), role → why cut, the decay link."""
+
+    results: list
+    checked: dict
+    cut: dict
+    decay: "Link | None"
+    at: str | None = None  # "the searched choices" after a search of the proof's choices
+
+
+def _capped(cap, fn):
+    """``(fn(), None)`` under the caller's cap; ``(None, "before" | "during")`` when the cap cut it.
+
+    The cap is checked before ``fn`` and enforced inside it (``SIGALRM`` in the main thread).
+
+    >>> from lkverify.options import Deadline
+    >>> _capped(Deadline(None, cap=True), lambda: 1)
+    (1, None)
+    """
+    from ..options import BudgetExceeded
+
+    if cap.seconds is None:
+        return fn(), None
+    if cap.expired:
+        return None, "before"
+    try:
+        with cap.enforced():
+            return fn(), None
+    except BudgetExceeded:
+        return None, "during"
+
+
+def _cut_text(cap, how: str, what: str = "step") -> str:
+    """Why a statement is undecided: the caller's budget was spent before or during it."""
+    if how == "before":
+        return f"the budget was spent before this {what} (time budget of {cap.seconds:g} s)"
+    return f"the budget was spent during this {what} (time budget of {cap.seconds:g} s); raise --budget to finish"
 
 
 def _check_claim(claim, P, given, sub_given, deadline):
@@ -528,92 +662,6 @@ def _not_exact_if_floats(result: Result, symbols: set, floated: frozenset) -> Re
                                       f"exact binary value), so the result is certified, never exact")
 
 
-@dataclasses.dataclass(frozen=True)
-class Link:
-    """One link of a theorem's chain: what it states and how sure lkverify is of it.
-
-    Attributes
-    ----------
-    name : str
-    status : Status or None
-        ``None`` when nothing of this run checks the link (it is missing).
-    detail : str
-
-    Examples
-    --------
-    >>> from lkverify.status import Status
-    >>> link = Link("V ≥ φ", None, "no bound step checks it")
-    >>> link.missing, link.to_json()
-    (True, {'link': 'V ≥ φ', 'status': None, 'detail': 'no bound step checks it'})
-    >>> Link("V̇ along the system", Status.EXACT).missing
-    False
-    """
-
-    name: str
-    status: Status | None
-    detail: str = ""
-
-    @property
-    def missing(self) -> bool:
-        return self.status is None
-
-    def to_json(self) -> dict:
-        return {"link": self.name, "status": None if self.status is None else self.status.value,
-                "detail": self.detail}
-
-
-def _combined(statuses) -> Status | None:
-    """The weakest of several statuses (failed < undecided < estimated/simulated < certified < exact)."""
-    statuses = list(statuses)
-    if not statuses:
-        return None
-    for s in (Status.FAILED, Status.UNDECIDED, Status.SIMULATED, Status.ESTIMATED, Status.CERTIFIED):
-        if s in statuses:
-            return s
-    return Status.EXACT
-
-
-def theorem_verdict(links) -> str:
-    """The verdict of a chain of links (see :meth:`Theorem.chain`), computed from their statuses.
-
-    "established" only when every link is ``exact`` or ``certified``; otherwise the
-    verdict names the first link, in the chain's order, that is failed, undecided or
-    missing (with its detail), counts the links after it that are not proved, and lists
-    the links proved.
-
-    Examples
-    --------
-    >>> theorem_verdict([Link("V̇", Status.EXACT), Link("V ≥ φ", None, "no bound step")])
-    'not established: missing: V ≥ φ (no bound step); checked: V̇ (exact)'
-    >>> theorem_verdict([Link("V̇", Status.FAILED, "a sign"), Link("V ≥ φ", None, "no bound step"),
-    ...                  Link("conclusion", None)])
-    'failed: V̇ (a sign); 1 later link not proved (V ≥ φ)'
-    >>> theorem_verdict([Link("V̇", Status.EXACT), Link("conclusion", Status.EXACT)])
-    'established: every link exact or certified (V̇, conclusion)'
-    """
-    links = list(links)
-    bad = [link for link in links if link.name != "conclusion"
-           and (link.status is None or not link.status.is_proof)]
-    proved = [link for link in links if link.status is not None and link.status.is_proof]
-    if not bad and all(not link.missing for link in links):
-        return f"established: every link exact or certified ({', '.join(link.name for link in links)})"
-    if not bad:
-        return "not established: the conclusion does not follow from the links"
-    first, later = bad[0], bad[1:]
-    if first.status is Status.FAILED:
-        text = f"failed: {first.name} ({first.detail})"
-    elif first.status is not None:
-        text = f"undecided: {first.name} ({first.status}: {first.detail})"
-    else:
-        text = f"not established: missing: {first.name} ({first.detail})"
-    if later:
-        text += (f"; {len(later)} later link{'s' if len(later) > 1 else ''} not proved "
-                 f"({', '.join(link.name for link in later)})")
-    if proved:
-        text += "; checked: " + ", ".join(f"{link.name} ({link.status})" for link in proved)
-    return text
-
-
 def _show(value) -> str:
     import sympy
 
@@ -663,12 +711,19 @@ class Check(Item):
     def parameters(self) -> Parameters:
         return self._parameters
 
-    def run(self, values: Mapping[str, object] | None = None, *, budget: float | None = 60.0,
+    def run(self, values: Mapping[str, object] | None = None, *, budget: float | None = None,
             progress: Callable[[str], None] | None = None) -> Report:
+        """Run every check on deterministic work limits; ``budget`` (seconds) is the caller's own cap."""
+        from ..options import Budget, Deadline, work_limits
+
         everything = self.parameters.resolve(values or {}, use_defaults=True)
         results: list[Result] = []
-        for check in self.checks:
-            results += check(everything)
+        with work_limits():
+            cap = Deadline(Budget.of(budget).seconds, cap=True)
+            for k, check in enumerate(self.checks):
+                rows, how = _capped(cap, lambda: check(everything))
+                results += rows if not how else [Result("bound", f"check {k + 1} of {len(self.checks)}",
+                                                        Status.UNDECIDED, None, _cut_text(cap, how, "check"))]
         failed = [r.name for r in results if r.status is Status.FAILED]
         undecided = [r.name for r in results if r.status is Status.UNDECIDED]
         verdict = (f"failed: {', '.join(failed)}" if failed else f"undecided: {', '.join(undecided)}" if undecided

@@ -32,7 +32,7 @@ from ..options import Accuracy, Budget, BudgetExceeded, Deadline
 from ..report.results import Report, Result
 from ..status import Status
 from . import bounds
-from .decay import DecayCertificate, certify_decay, estimate_decay, search_parameters, tighten
+from .decay import DecayCertificate, StatedAt, certify_decay, estimate_decay, search_parameters, tighten
 
 __all__ = ["ConstantsJob", "ConstantsTuning", "Template"]
 
@@ -160,8 +160,10 @@ class ConstantsJob:
     objective : callable or dict
         estimate dict → number to minimise; or goal name → such a callable
         (the first is the default goal).
-    paper : dict
-        The paper's printed values of the outputs (name → value).
+    paper : dict or StatedAt
+        The paper's printed values of the outputs (name → value); a
+        :class:`~lkverify.certify.decay.StatedAt` compares them only at the data where the
+        paper states them.
     applies : callable, optional
         ``applies(values)`` → None, or the reason the model does not apply
         (e.g. a hypothesis of the derivation fails); that is bad input (InputError).
@@ -220,6 +222,11 @@ class ConstantsJob:
     def plot(self, extra: dict, path, *, values=None) -> None:
         """Write the job's figure (default: the certified envelopes on log axes)."""
         (self.plot_fn or _plot_envelopes)(extra, path, values=values)
+
+    def stated(self, values: Mapping) -> dict:
+        """The paper's printed values to compare with at these values: all of :attr:`paper`, or, for a
+        :class:`~lkverify.certify.decay.StatedAt`, only at the data where the paper states them."""
+        return self.paper.at(values) if isinstance(self.paper, StatedAt) else dict(self.paper or {})
 
     @property
     def goals(self) -> list[str]:
@@ -318,7 +325,7 @@ class ConstantsJob:
                           "undecided: no certificate" + (_spent(deadline) or " (every attempt failed)")), consts
         if cert.status is not Status.CERTIFIED:
             results.append(Result("region", "certificate", cert.status, None, cert.detail))
-        results += cert.results(self.paper, self.descriptions)
+        results += cert.results(self.paper, self.descriptions, values)
         for env in cert.envelopes:
             results.append(Result("envelope", f"envelope {env.name}", cert.status,
                                   {"d": env.d, "rate": env.kappa, "p": env.p}, env.text()))
@@ -332,7 +339,51 @@ class ConstantsJob:
                 checked, curves = checked
             results += checked
             extra["trajectories"] = curves
-        return Report(item_name, dict(shown), tuple(results), _verdict(results, self.paper, cert)), extra
+        return Report(item_name, dict(shown), tuple(results), _verdict(results, self.stated(values), cert)), extra
+
+    def search_choices(self, item_name: str, values: Mapping, *, progress: Callable[[str], None] | None = None,
+                       seed: int = 0, goal: str | None = None) -> tuple[dict | None, str]:
+        """The free parameters (the proof's choices) at which the decay is certified, found as :meth:`run` does.
+
+        What ``lkverify check`` runs when a proof's documented choices do not close its chain
+        (:meth:`lkverify.catalogue.Theorem.run`): the template constants, the bound steps (``steps=True``),
+        the search and the certification of :meth:`run`, without the simulations; on the job's work
+        limits (no time budget of its own: the caller's cap interrupts it).
+
+        Returns
+        -------
+        (dict or None, str)
+            The exact parameters (name → Rational) and what was certified there, or None and why not.
+        """
+        say = progress or (lambda msg: None)
+        if not self.steps:
+            return None, "the constants job does not check the bound steps"
+        why = self.applies(values) if self.applies is not None else None
+        if why:
+            return None, why
+        deadline, state = Deadline(None), _Progress([], ["starting"])
+        consts = self._template_constants(item_name, values, deadline=deadline, state=state, say=say)
+        if any(r.status is not Status.CERTIFIED for r in state.results if r.name in consts):
+            return None, "a template constant was not certified"
+        objective = self.objective[goal or next(iter(self.objective))] if isinstance(self.objective, Mapping) \
+            else self.objective
+        build, _ = self.model(values, consts, budget=None, progress=say)
+        if build is None:
+            return None, "a bound step of the chain is not proved with the free parameters open"
+        found = self._search_and_certify(item_name, build, objective, deadline=deadline, state=state, say=say,
+                                         seed=seed)
+        ranges = ", ".join(f"{k} ∈ [{lo:g}, {hi:g}]" for k, (lo, hi) in (self.wider or self.free).items())
+        if found.params is None:
+            return None, (f"the search ({ranges}) found no parameters for which the final inequalities hold on the "
+                          f"sampled region (not a proof that none exist)")
+        cert = found.certificate
+        if cert is None or cert.status is not Status.CERTIFIED:
+            return None, (f"the decay was not certified at the parameters the search found "
+                          f"({', '.join(f'{k} = {v}' for k, v in found.params.items())})"
+                          + (f": {cert.detail}" if cert is not None else ""))
+        c = cert.constants
+        return dict(found.params), (f"the constants job certified V̇ ≤ −c̃V^p there (c̃ = {c.get('c_tilde', 0):.4g}, "
+                                    f"δ̃ = {c.get('delta_tilde', 0):.4g}); searched {ranges}")
 
     def _template_constants(self, item_name, values, *, deadline: Deadline, state: _Progress, say) -> dict:
         """Step 1: the certified constant of every template (a Result each); name → certified bound."""
@@ -427,7 +478,7 @@ class ConstantsJob:
                 break
             state.enter(f"the certification (round {round_ + 1}, attempt {attempt + 1})")
             say(f"{item_name}: certifying (round {round_ + 1}, attempt {attempt + 1}, c̃ = {float(ct):.5g})")
-            seconds = tune.certify_seconds if remaining is None else min(remaining, tune.certify_seconds)
+            seconds = None if remaining is None else min(remaining, tune.certify_seconds)  # none: box limits
             cert = certify_decay(model, c_tilde=ct, lower_coefficients=ls, delta_tilde=dt,
                                  budget=Budget(seconds=seconds), progress=say)
             if cert.status is Status.CERTIFIED:

@@ -54,7 +54,7 @@ from . import bounds
 from .intervals import enclose, float_down, float_up
 from .matrices import matrix_positive_definite
 
-__all__ = ["C0_REL_GAP", "CERTIFY_SECONDS", "DecayCertificate", "DecayModel", "Envelope", "ESTIMATE_GRID",
+__all__ = ["C0_REL_GAP", "CERTIFY_SECONDS", "DecayCertificate", "DecayModel", "Envelope", "ESTIMATE_GRID", "StatedAt",
            "INFEASIBLE_SCORE", "SEARCH_GRID", "SEARCH_MAXITER", "SEARCH_POPSIZE", "certify_decay", "certify_model", "estimate_decay", "search_parameters", "tighten"]
 
 #: default time budget of one :func:`certify_decay` (seconds, shared by its interval checks)
@@ -217,8 +217,18 @@ class DecayCertificate:
     seconds: float
     counterexamples: tuple = ()  # (what, point) for refuted face checks: what = "rate" or an output variable
 
-    def results(self, paper: Mapping[str, float] | None = None, names: Mapping[str, str] | None = None) -> list:
-        """Results for the report: every constant, compared with the paper's value if given."""
+    def results(self, paper: "Mapping[str, float] | StatedAt | None" = None, names: Mapping[str, str] | None = None,
+                values: Mapping | None = None) -> list:
+        """Results for the report: every constant, compared with the paper's value if given.
+
+        ``paper`` may be a :class:`StatedAt`: its values are compared only at the data where the
+        paper states them (``values``, the resolved parameters; None: nowhere).
+        """
+        note, stated = "", set(paper.values) if isinstance(paper, StatedAt) else set()
+        if isinstance(paper, StatedAt):
+            if not paper.applies(values):
+                note = f"(the paper states a value only at {paper.where})"
+            paper = paper.at(values)
         paper = dict(paper or {})
         out = []
         for key, value in self.constants.items():
@@ -230,9 +240,69 @@ class DecayCertificate:
             if pv is not None:
                 detail += (f" paper: {pv:g}; lkverify: {value:.4g} "
                            f"({'equal or better' if better else 'worse'} than the paper)")
+            elif note and key in stated:
+                detail += " " + note
             out.append(Result("constant", key, self.status, {"value": value, "paper": pv, "equal_or_better": better},
                               detail.strip()))
         return out
+
+
+@dataclasses.dataclass(frozen=True)
+class StatedAt:
+    """Values a paper prints (constants, an estimate) and the data at which it states them.
+
+    They are compared with lkverify's only there: at other gains the paper says nothing.
+
+    Parameters
+    ----------
+    values : mapping
+        Output name → the printed value (``{"d1": 9.21, …}``).
+    at_values : mapping
+        Parameter name → its exact value where the paper states them (resolved, as
+        :meth:`lkverify.declare.parameters.Parameters.resolve` gives it).
+    where : str
+        The data in words ("the Fig. 6/7 data").
+
+    Examples
+    --------
+    >>> import sympy
+    >>> stated = StatedAt({"d1": 9.21}, {"a": sympy.Integer(0), "F": sympy.eye(2)}, "Fig. 6")
+    >>> stated.at({"a": sympy.Integer(0), "F": sympy.eye(2), "lam": 3}), stated.at({"a": sympy.Rational(1, 10**9),
+    ...                                                                              "F": sympy.eye(2)})
+    ({'d1': 9.21}, {})
+    >>> stated.at(None), stated.applies({"a": 0.0, "F": sympy.Matrix([[1, 0], [0, 1.0]])})
+    ({}, True)
+    """
+
+    values: Mapping
+    at_values: Mapping
+    where: str
+
+    def applies(self, values: Mapping | None) -> bool:
+        """True when every parameter of :attr:`at_values` has exactly that value in ``values``."""
+        if values is None:
+            return False
+        return all(k in values and _same(values[k], v) for k, v in self.at_values.items())
+
+    def at(self, values: Mapping | None) -> dict:
+        """The printed values at these data: all of them where the paper states them, else none."""
+        return dict(self.values) if self.applies(values) else {}
+
+    def __iter__(self):  # the outputs it names (so ``list(paper)`` lists them as for a plain mapping)
+        return iter(self.values)
+
+
+def _same(x, y) -> bool:
+    """Exactly equal values: numbers, vectors or matrices (a float at its exact binary value)."""
+    if isinstance(x, sympy.MatrixBase) or isinstance(y, sympy.MatrixBase):
+        if not (isinstance(x, sympy.MatrixBase) and isinstance(y, sympy.MatrixBase)) or x.shape != y.shape:
+            return False
+        return all(_same(a, b) for a, b in zip(x, y))
+    try:
+        d = _exact_floats(sympy.sympify(x)) - _exact_floats(sympy.sympify(y))
+    except (sympy.SympifyError, TypeError):
+        return False
+    return d == 0 or sympy.simplify(d) == 0
 
 
 def _exact_floats(expr):

@@ -62,11 +62,16 @@ class Limits:
 
     @classmethod
     def of(cls, budget: Budget | None) -> Limits:
-        """The limits of ``budget`` (``None``: :data:`DEFAULT_BUDGET_SECONDS`, :data:`DEFAULT_BUDGET_BOXES`)."""
-        if budget is None:
-            return cls(DEFAULT_BUDGET_SECONDS, DEFAULT_BUDGET_BOXES)
-        return cls(_INF if budget.seconds is None else float(budget.seconds),
-                   DEFAULT_BUDGET_BOXES if budget.boxes is None else budget.boxes)
+        """The limits of ``budget`` (``None``: :data:`DEFAULT_BUDGET_SECONDS`, :data:`DEFAULT_BUDGET_BOXES`).
+
+        Inside :func:`lkverify.options.work_limits` the seconds are no limit (only the boxes are).
+        """
+        from ..options import ceiling
+
+        seconds = DEFAULT_BUDGET_SECONDS if budget is None else budget.seconds
+        seconds = ceiling(None if seconds is None else float(seconds))
+        return cls(_INF if seconds is None else seconds,
+                   DEFAULT_BUDGET_BOXES if budget is None or budget.boxes is None else budget.boxes)
 
     def share(self, fraction: float, *, boxes: float = 1.0) -> Limits:
         """A part of these limits (at least one box)."""

@@ -9,6 +9,7 @@ default of the parameter r, never retyped.
 import numpy as np
 import sympy
 
+from lkverify.certify.decay import StatedAt
 from lkverify.simulate import Run, Series
 from lkverify.simulate.figures import AngleHistory, FigureExample, show_value, show_vector
 from lkverify.simulate.rigidbody import DEFAULT_CONVENTION, inertial_vectors_from_angles
@@ -16,7 +17,8 @@ from lkverify.simulate.rigidbody import DEFAULT_CONVENTION, inertial_vectors_fro
 from .equations import PAPER, P, system
 
 __all__ = ["R_TARGET", "initial_history", "SECTION6", "FIG7_HISTORY", "DIRECTION_COSINES", "s_minus_r", "distance",
-           "gains", "figure", "EQUILIBRIUM", "caption", "SECTION6_ANGLES", "FIG7_ANGLES", "INITIAL", "FIG1", "FIG4", "FIG6", "PRINTED_15"]
+           "gains", "figure", "EQUILIBRIUM", "caption", "SECTION6_ANGLES", "FIG7_ANGLES", "INITIAL", "FIG1", "FIG4", "FIG6", "PRINTED_15",
+           "PRINTED_15_DATA", "PRINTED_15_STATED", "at_printed_15"]
 
 R_TARGET = np.array([float(x) for x in P["r"].default])  # r = (1,1,1)/√3 of section 6
 
@@ -97,3 +99,14 @@ INITIAL = {1: SECTION6_ANGLES, 2: SECTION6_ANGLES, 3: SECTION6_ANGLES, 4: SECTIO
 
 # Estimate (15) as printed: ‖s(t) − r‖ ≤ 9.21‖χ‖_τ (1 + 0.23‖χ‖_τ (t − t0))^{−1} for ‖χ‖_τ < 0.28.
 PRINTED_15 = {"d1": 9.21, "d2": 7.44, "d3": 0.23, "delta_tilde": 0.28}
+#: the data at which the paper states (15): the gains of Fig. 6 (Fig. 7 keeps them), section 6's Θ and r (resolved)
+PRINTED_15_DATA = {k: v for k, v in P.resolve(FIG6, use_defaults=True).items()
+                   if k in ("Theta", "F", "a", "b", "tau", "mu", "r")}
+#: (15) compared only there: at other gains the paper states no constants
+PRINTED_15_STATED = StatedAt(PRINTED_15, PRINTED_15_DATA,
+                             "the Fig. 6/7 data (a = 0, F = I, b = −1, τ = 1, μ = 2, Θ = diag(5,6,4), r = (1,1,1)/√3)")
+
+
+def at_printed_15(values) -> bool:
+    """True when ``values`` (resolved) are the data at which the paper states (15), exactly."""
+    return PRINTED_15_STATED.applies(values)

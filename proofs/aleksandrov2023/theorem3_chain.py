@@ -33,7 +33,7 @@ from lkverify.certify.steps.rules import (CauchySchwarz, Equal, Nonpositive, Ray
                                           crossed, integral_of, measured, scaled, unit)
 
 from .equations import F, F_inv, J, K, Theta, a, alpha, b, beta, delta_e, delta_w, lam, mu, n, omega, r, s, system, tau
-from .section6 import PRINTED_15
+from .section6 import PRINTED_15_STATED
 
 __all__ = ["CHOICES", "DECAY", "DEFINITIONS", "MEASURES", "REGION", "RHO_CAP", "chain_steps", "e", "eigen_bounds",
            "j", "w"]
@@ -172,7 +172,7 @@ DECAY = Decay(sympy.Rational(3, 2), ("w", "e"), {"j": tau_j}, {"d1": "e", "d2": 
                             "delta_tilde": "valid for ‖χ‖_τ < δ̃:", "C0": "V(t0) ≤ C0‖χ‖_τ²",
                             "c_tilde": "V̇ ≤ −c̃V^{3/2} on the region", "l_e": "V ≥ l_e‖s−r‖²",
                             "l_w": "V ≥ l_w‖ω‖²"},
-              paper=PRINTED_15)
+              paper=PRINTED_15_STATED)  # compared only at the Fig. 6/7 data, where the paper states (15)
 
 #: the proof's free choices at the Fig. 6 gains (found by `lkverify constants aleksandrov2023.theorem3`)
 CHOICES = {"lam": "23648/1601", "alpha": "9/10", "beta": "202/5957", "delta_e": "1/200", "delta_w": "1571/9995"}

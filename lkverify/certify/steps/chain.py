@@ -665,7 +665,7 @@ class Decay:
             return [], Status.UNDECIDED, (
                 "the estimator finds no admissible constants: V̇ ≥ 0 is sampled on the region or the model's "
                 "shape is not covered (choose a smaller region or other functional parameters)")
-        results = cert.results(self.paper, self.descriptions)
+        results = cert.results(self.paper, self.descriptions, values)  # printed values: only where stated
         for env in cert.envelopes:
             results.append(Result(Kind.ENVELOPE, f"envelope {env.name}", cert.status,
                                   {"d": env.d, "rate": env.kappa, "p": env.p}, env.text()))
