@@ -29,6 +29,7 @@ def test_there_are_notebooks():
     assert len(NOTEBOOKS) >= 3
 
 
+@pytest.mark.slow  # 1–4 min per notebook; the default run executes the small notebook below in a real kernel
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.name)
 def test_notebook_runs_and_outputs_are_up_to_date(path):
     committed = nbformat.read(path, as_version=4)
@@ -41,6 +42,29 @@ def test_notebook_runs_and_outputs_are_up_to_date(path):
     if problems:
         pytest.fail("\n\n".join(problems) + f"\n\nThe committed outputs are out of date: regenerate them with "
                     f"`{regenerate.REGENERATE}` (see notebooks/README.md).", pytrace=False)
+
+
+def test_a_small_notebook_runs_in_a_real_kernel_and_a_raising_cell_is_named(tmp_path):
+    """The cheap stand-in of the notebook check: a two-cell notebook importing lkverify, then one that raises."""
+    nb = nbformat.v4.new_notebook()
+    nb.cells = [nbformat.v4.new_markdown_cell("# a small notebook"),
+                nbformat.v4.new_code_cell("import lkverify\nfrom lkverify.status import Status\nprint(Status.EXACT.value)"),
+                nbformat.v4.new_code_cell("print(sum(range(4)))")]
+    path = tmp_path / "small.ipynb"
+    nbformat.write(nb, path)
+    fresh = regenerate.execute(path)
+    outputs = ["".join(o.get("text", "") for o in c.outputs) for c in fresh.cells if c.cell_type == "code"]
+    assert outputs == ["exact\n", "6\n"]
+    stale = nbformat.from_dict(fresh)
+    stale.cells[2].outputs[0]["text"] = "7\n"
+    assert regenerate.compare(fresh, fresh, "small.ipynb") == []
+    (msg,) = regenerate.compare(stale, fresh, "small.ipynb")
+    assert "code cell 2" in msg and "text output differs" in msg
+    raising = nbformat.v4.new_notebook()
+    raising.cells = [nbformat.v4.new_code_cell("x = 1"), nbformat.v4.new_code_cell("x / 0")]
+    nbformat.write(raising, tmp_path / "raising.ipynb")
+    with pytest.raises(regenerate.NotebookError, match=r"raising.ipynb, code cell 2: the cell raised ZeroDivisionError"):
+        regenerate.execute(tmp_path / "raising.ipynb")
 
 
 # -- the comparison itself (no kernel) --------------------------------------------------------
