@@ -4,8 +4,8 @@ Each ``$ lkverify …`` line of a ``console`` block is run in a fresh process (f
 temporary directory holding the README's proof file, so ``--plot`` files and
 ``my_proof.py`` resolve there).  The expected exit code is the one the README's comment
 states (``# exit 1: …``), 0 otherwise; ``--json`` output must parse; no traceback ever.
-The quick ones run by default, the long simulations, the bare report and the certified
-constants of Theorem 3 with ``-m slow``.
+The quick ones (the README's own proof file) run by default, the catalogue's items,
+simulations, constants and linear examples with ``-m slow``.
 """
 
 import json
@@ -24,7 +24,11 @@ SLOW = ("lkverify simulate", "lkverify report", "lkverify constants aleksandrov2
         "lkverify check aleksandrov2026.remark1", "lkverify constants aleksandrov2026.remark1",
         "lkverify check aleksandrov2023.theorem", "lkverify check aleksandrov2017.theorem1",
         'lkverify linear --set "A=[[-2,0],[0,-0.9]]" --set "Ad=[[-1,0],[-1,-1]]" --plot', "lkverify constants somov",
-        "lkverify sweep")
+        "lkverify sweep",
+        # 10–50 s each on a loaded 2-core machine
+        "lkverify list", "lkverify check", "lkverify constants", "lkverify linear")
+#: the examples the default run keeps (a few seconds: the README's own proof file)
+FAST = ("lkverify check my_proof.py",)
 
 
 def _console_lines():
@@ -46,7 +50,7 @@ def _cases():
         command, _, comment = line.partition("#")
         m = re.match(r"\s*exit (\d+)", comment)
         expected = int(m.group(1)) if m else 0
-        marks = [pytest.mark.slow] if command.startswith(SLOW) else []
+        marks = [pytest.mark.slow] if command.startswith(SLOW) and not command.startswith(FAST) else []
         yield pytest.param(command.strip(), expected, id=command.strip()[9:60], marks=marks)
 
 
