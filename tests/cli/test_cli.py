@@ -25,6 +25,7 @@ def test_list(capsys):
     assert "aleksandrov2023.theorem3" in out and "aleksandrov2026.theorem1" in out
 
 
+@pytest.mark.slow  # about 20 s: the whole check of Theorem 3; the default run checks aleksandrov2026.theorem1
 def test_theorem3_holds_at_the_fig6_gains(capsys):
     code, out, _ = run(capsys, "check", "aleksandrov2023.theorem3", "--set", "a=0", "--set", "b=-1",
                        "--set", "tau=1", "--set", "mu=2", "--json")
@@ -38,6 +39,7 @@ def test_theorem3_holds_at_the_fig6_gains(capsys):
     assert by_name["b*tau < a"]["status"] == "exact" and by_name["b*tau < a"]["value"] == 1
 
 
+@pytest.mark.slow  # about 25 s: the whole check of Theorem 3; the default run checks aleksandrov2026.theorem1
 def test_theorem3_fails_when_b_tau_exceeds_a(capsys):
     code, out, _ = run(capsys, "check", "aleksandrov2023.theorem3", "--set", "a=0.5", "--set", "b=1",
                        "--set", "tau=1", "--set", "mu=2")
@@ -138,6 +140,7 @@ def test_bare_command_reports_the_catalogue(capsys):
     assert "verdict" in out
 
 
+@pytest.mark.slow  # about 25 s: three checks of Theorem 2; the default run checks aleksandrov2026.theorem1
 def test_theorem2_assumption2_margin_exact_and_refuted(capsys):
     code, out, _ = run(capsys, "check", "aleksandrov2026.theorem2", "--json")
     doc = json.loads(out)
@@ -153,6 +156,7 @@ def test_theorem2_assumption2_margin_exact_and_refuted(capsys):
     assert code == 1 and by["beta + int g > 0"]["status"] == "failed"
 
 
+@pytest.mark.slow  # about 90 s: every item of a paper; the default run checks aleksandrov2026.theorem1
 def test_check_a_whole_paper_runs_theorems_and_examples(capsys):
     # the items of a paper share the --budget keyword: examples took a float budget as a Budget (exit 3)
     code, out, err = run(capsys, "check", "aleksandrov2026", "--json", "--budget", "120")
