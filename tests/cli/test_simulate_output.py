@@ -1,6 +1,8 @@
 """`lkverify simulate` output (issue 10): JSON fields, history override, wording, progress, --quiet, help."""
 
 import json
+import re
+from pathlib import Path
 
 import pytest
 
@@ -97,9 +99,21 @@ def test_every_subcommand_and_option_has_help():
     assert all(c in convention for c in ("yzx", "zyx", "xyz"))
 
 
+@pytest.mark.slow  # about 40 s: the whole check of Theorem 3; the variant below checks the README's proof file
 def test_check_json_carries_the_versions_of_the_proof_libraries(run_cli):
     code, out, _ = run_cli("check", "aleksandrov2023.theorem3", "--set", "a=0.5", "--set", "b=1", "--json", "--quiet")
     assert code == 1
+    d = json.loads(out)
+    assert {"lkverify", "sympy", "python-flint", "numpy", "scipy"} <= set(d["versions"])
+    assert all(isinstance(v, str) for v in d["versions"].values() if v is not None)
+
+
+def test_check_json_of_a_proof_file_carries_the_versions_of_the_proof_libraries(run_cli, tmp_path):
+    readme = (Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
+    (block,) = re.findall(r"```python\n(# my_proof.py.*?)```", readme, flags=re.S)
+    (tmp_path / "my_proof.py").write_text(block, encoding="utf-8")
+    code, out, _ = run_cli("check", str(tmp_path / "my_proof.py"), "--set", "a=3", "--json", "--quiet")
+    assert code == 0
     d = json.loads(out)
     assert {"lkverify", "sympy", "python-flint", "numpy", "scipy"} <= set(d["versions"])
     assert all(isinstance(v, str) for v in d["versions"].values() if v is not None)
