@@ -15,6 +15,8 @@
     one certificate for every delay of an interval (concavity in h: exact; else arb pieces);
 :mod:`.instability`
     instability certified: a characteristic root enclosed in the open right half-plane (interval Newton in arb);
+:mod:`.stretches`
+    certified stable *and* unstable delay intervals (crossing delays enclosed in arb, one proof per interval);
 :mod:`.margin`
     the largest (and smallest) delay of a stability interval with a verified certificate, by bisection;
 :mod:`.linearise`
@@ -30,6 +32,7 @@ from .hierarchy import (LmiCertificate, LmiResult, certify_delay, check_certific
                         solve_certificate)
 from .interval import IntervalCertificate, certify_cover, certify_interval
 from .instability import Instability, RootBall, newton_test, refute_stability
+from .stretches import CertifiedStretch, certify_stretches, crossing_enclosures
 from .margin import CertifiedInterval, certified_interval
 from .linearise import Linearisation, linearise, linearise_at, tangent_basis
 from .family import LinearBatch, LinearFamily, linear_family
@@ -46,4 +49,5 @@ __all__ = [
     "Linearisation", "linearise", "linearise_at", "tangent_basis",
     "LinearBatch", "LinearFamily", "linear_family",
     "Instability", "RootBall", "newton_test", "refute_stability",
+    "CertifiedStretch", "certify_stretches", "crossing_enclosures",
 ]

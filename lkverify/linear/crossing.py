@@ -39,7 +39,7 @@ from ..status import Status
 from .model import LinearDelaySystem
 from .spectrum import rightmost_roots, spectral_abscissa
 
-__all__ = ["Crossing", "StabilityIntervals", "stability_intervals", "crossing_frequencies"]
+__all__ = ["Crossing", "StabilityIntervals", "stability_intervals", "crossing_frequencies", "frequency_polynomial"]
 
 #: |z| − 1 accepted for a unimodular root (the frequencies are exact; z is computed in floats)
 UNIMODULAR_TOL = 1e-7
@@ -72,7 +72,12 @@ class StabilityIntervals:
     method : str
         ``"crossing"`` (exact resultant) or ``"scan"`` (grid of the spectral abscissa).
     status : Status
+        ``estimated`` (of ``intervals`` and ``crossings``).
     detail : str
+    certified : tuple of CertifiedStretch
+        With ``certify=True``: the delays proved stable *and* those proved unstable, interval by
+        interval (:func:`lkverify.linear.stretches.certify_stretches`, ``certified`` each), or
+        single sample delays where no crossing enclosures exist (``point``); empty otherwise.
 
     >>> StabilityIntervals(((0.0, 2.0),), (), 5.0, "crossing", Status.ESTIMATED, "").margin
     2.0
@@ -84,6 +89,7 @@ class StabilityIntervals:
     method: str
     status: Status
     detail: str
+    certified: tuple = ()
 
     @property
     def margin(self) -> float | None:
@@ -105,6 +111,24 @@ def crossing_frequencies(system: LinearDelaySystem):
     >>> sys = LinearDelaySystem([[-2, 0], [0, "-0.9"]], Ad=[[-1, 0], [-1, -1]])
     >>> [round(w, 6) for w in crossing_frequencies(sys)[0]]
     [0.43589]
+    """
+    found = frequency_polynomial(system)
+    if found is None:
+        return None
+    P, q, (z, w) = found
+    roots = [float(r.evalf(30)) for r in sympy.real_roots(P) if r > 0]
+    return sorted(set(roots)), q, (z, w)
+
+
+def frequency_polynomial(system: LinearDelaySystem):
+    """``(P, q, (z, ω))``: P ∈ ℚ[ω] whose real roots contain every crossing frequency, and q(ω, z); or None.
+
+    None when unsupported (irrational matrices, a polynomial kernel, no delayed term, a resultant ≡ 0).
+
+    >>> from lkverify.linear.model import LinearDelaySystem
+    >>> P, q, (z, w) = frequency_polynomial(LinearDelaySystem([[-2, 0], [0, "-0.9"]], Ad=[[-1, 0], [-1, -1]]))
+    >>> [round(float(r), 12) for r in sympy.real_roots(P) if r > 0]     # √0.19
+    [0.435889894354]
     """
     if not (system.is_rational and system.constant_kernel):
         return None
@@ -128,8 +152,7 @@ def crossing_frequencies(system: LinearDelaySystem):
     if not im.is_zero and not re.is_zero:
         P = sympy.gcd(re, im)
     P = sympy.Poly(P, w, domain="QQ")
-    roots = [float(r.evalf(30)) for r in sympy.real_roots(P) if r > 0]
-    return sorted(set(roots)), q, (z, w)
+    return P, q, (z, w)
 
 
 def _crossings_from(system, found, h_max):
@@ -173,7 +196,7 @@ def _scan(system, h_max, nodes):
 
 
 def stability_intervals(system: LinearDelaySystem, *, h_max: float = 20.0, nodes: int = 40,
-                        method: str = "auto") -> StabilityIntervals:
+                        method: str = "auto", certify: bool = False) -> StabilityIntervals:
     """Maximal delay intervals of exponential stability in [0, h_max] (``estimated``).
 
     Parameters
@@ -186,6 +209,10 @@ def stability_intervals(system: LinearDelaySystem, *, h_max: float = 20.0, nodes
     method : {"auto", "crossing", "scan"}
         ``auto``: the exact resultant when the matrices are rational and the kernel constant,
         else the scan; ``scan`` forces the reference path (a grid of the spectral abscissa).
+    certify : bool
+        Also prove stable and unstable intervals (``certified``: crossing delays enclosed in
+        arb, one LMI certificate or one right half-plane root per interval; see
+        :mod:`lkverify.linear.stretches`).  Costs an SDP solve per stable interval.
 
     Returns
     -------
@@ -197,6 +224,9 @@ def stability_intervals(system: LinearDelaySystem, *, h_max: float = 20.0, nodes
     >>> gu = LinearDelaySystem([[0, 1], [-2, "0.1"]], Ad=[[0, 0], [1, 0]])
     >>> [(round(lo, 7), round(hi, 7)) for lo, hi in stability_intervals(gu, h_max=5).intervals]
     [(0.1001683, 1.7178582)]
+    >>> res = stability_intervals(LinearDelaySystem([[1]], Ad=[["-1/2"]]), h_max=5, certify=True)
+    >>> res.intervals, [(c.kind, c.lo, c.hi, c.status.value) for c in res.certified]
+    ((), [('unstable', 0.0, 5.0, 'certified')])
     """
     if method not in ("auto", "crossing", "scan"):
         raise InputError(f"method: expected 'auto', 'crossing' or 'scan', got {method!r}")
@@ -226,4 +256,10 @@ def stability_intervals(system: LinearDelaySystem, *, h_max: float = 20.0, nodes
            "(polynomial kernel or irrational matrices: no exact resultant)")
     detail = (f"{how}; each interval between crossing delays decided by the spectral abscissa at its midpoint; "
               f"floating point")
-    return StabilityIntervals(tuple(intervals), tuple(crossings), float(h_max), method, Status.ESTIMATED, detail)
+    certified = ()
+    if certify:
+        from .stretches import certify_stretches
+
+        certified = certify_stretches(system, h_max, estimated=intervals, nodes=nodes)
+    return StabilityIntervals(tuple(intervals), tuple(crossings), float(h_max), method, Status.ESTIMATED, detail,
+                              certified)

@@ -3,12 +3,16 @@
 Examples
 --------
 >>> rep = linear_report({"A": [[-2, 0], [0, "-0.9"]], "Ad": [[-1, 0], [-1, -1]]}, orders=(0,), h_max=10)
->>> [r.status.value for r in rep.results]
-['estimated', 'estimated', 'exact']
+>>> [(r.name, r.status.value) for r in rep.results]       # doctest: +NORMALIZE_WHITESPACE
+[('stability intervals (spectral)', 'estimated'), ('stability intervals (certified)', 'certified'),
+ ('delay margin (spectral)', 'estimated'), ('certified delays (jensen)', 'exact')]
+>>> rep.results[1].value["stable"], rep.results[1].value["unstable"]          # doctest: +ELLIPSIS
+([[0.0, 6.172581...]], [[6.172581..., 10.0]])
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 
@@ -134,10 +138,19 @@ def linear_report(values: dict, *, orders=DEFAULT_ORDERS, h_max: float = 20.0, h
     t0 = time.perf_counter()
     iv = stability_intervals(system, h_max=h_max)
     t_spec = time.perf_counter() - t0
+    if hq is None:
+        say("certified intervals: crossing delays enclosed, one proof per interval")
+        t1 = time.perf_counter()
+        from .stretches import certify_stretches
+
+        iv = dataclasses.replace(iv, certified=certify_stretches(system, h_max, estimated=iv.intervals))
+        t_cert = time.perf_counter() - t1
     shown = ", ".join(f"({lo:.7g}, {hi:.7g})" if lo > 0 else f"[0, {hi:.7g})" for lo, hi in iv.intervals) or "none"
     results.append(Result("linear", "stability intervals (spectral)", Status.ESTIMATED,
                           {"intervals": [list(x) for x in iv.intervals], "method": iv.method},
                           f"stable for h in {shown} within [0, {h_max:g}]; {iv.detail}; {t_spec:.2f} s"))
+    if iv.certified:
+        results.append(_certified_row(iv, h_max, t_cert))
     if iv.margin is not None:
         results.append(Result("linear", "delay margin (spectral)", Status.ESTIMATED, iv.margin,
                               f"the first crossing delay, from the crossing analysis ({iv.method}); "
@@ -161,6 +174,29 @@ def linear_report(values: dict, *, orders=DEFAULT_ORDERS, h_max: float = 20.0, h
         path = plot_linear(system, plot, intervals=iv, h=None if hq is None else float(hq), certified=certified)
         details = (f"figure: {path}",)
     return Report("linear", dict(values), tuple(results), verdict, text_details=details)
+
+
+def _certified_row(iv, h_max, seconds) -> Result:
+    """Stable and unstable delays, each proved (``certified``), or undecided where a proof was not found."""
+    parts = iv.certified
+    points = parts[0].point
+    value = {kind: [[c.lo, c.hi] for c in parts if c.kind == kind] for kind in ("stable", "unstable", "undecided")}
+    value["points_only"] = points
+
+    def shown(kind):
+        got = [c for c in parts if c.kind == kind]
+        if points:
+            return ", ".join(f"h = {c.sample}" for c in got) or "none"
+        return ", ".join(f"({c.lo:.10g}, {c.hi:.10g})" for c in got) or "none"
+
+    status = Status.CERTIFIED if all(c.holds for c in parts) else Status.UNDECIDED
+    what = "at the single delays" if points else "on the open intervals"
+    detail = (f"proved stable {what} {shown('stable')}; proved unstable {what} {shown('unstable')}"
+              + (f"; undecided: {shown('undecided')}" if value["undecided"] else "")
+              + f" (within (0, {h_max:g}); {seconds:.2f} s). "
+              + " | ".join(c.detail for c in parts))
+    name = "stability at sample delays (certified)" if points else "stability intervals (certified)"
+    return Result("linear", name, status, value, detail)
 
 
 def _at_delay(system, h, hq, orders, say) -> list:
@@ -208,6 +244,16 @@ def _margins(system, target, orders, h_max, say) -> list:
 
 
 def _verdict(results, iv) -> str:
+    text = _verdict_spectral(results, iv)
+    row = next((r for r in results if r.name.endswith("(certified)")), None)
+    if row is not None and not row.value["points_only"]:
+        def ends(kind):
+            return ", ".join(f"({a:.7g}, {b:.7g})" for a, b in row.value[kind]) or "none"
+        text += f"; proved stable on {ends('stable')} and unstable on {ends('unstable')} ({row.status.value})"
+    return text
+
+
+def _verdict_spectral(results, iv) -> str:
     at = next((r for r in results if r.name.startswith("stable at h")), None)
     if at is not None:
         h = at.name[len("stable at h = "):]
