@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-__all__ = ["InputError", "LkverifyError", "UnsupportedInput"]
+__all__ = ["InputError", "InternalError", "LkverifyError", "RuleSoundnessError", "UnsupportedInput"]
 
 
 class _OwnNames(type):
@@ -83,3 +83,42 @@ class UnsupportedInput(LkverifyError, ValueError):
     >>> issubclass(UnsupportedInput, ValueError)    # callers catching ValueError see it too
     True
     """
+
+
+class InternalError(LkverifyError, RuntimeError):
+    """A bug of lkverify found by its own checks (the command line exits with code 3).
+
+    Never caused by the caller's input; the message is one line saying what lkverify
+    caught itself doing.
+
+    Examples
+    --------
+    >>> issubclass(InternalError, LkverifyError), issubclass(InternalError, ValueError)
+    (True, False)
+    """
+
+
+class RuleSoundnessError(InternalError):
+    """A bound-step rule proved a term bound that a rechecked witness refutes: a bug of the rule.
+
+    Parameters
+    ----------
+    message : str
+        One line naming the rule, the step and the witness.
+    rule : str
+        The rule's name.
+    witness : object
+        The :class:`~lkverify.certify.steps.witnesses.Witness` (rechecked in interval
+        arithmetic) at which the proved bound fails.
+
+    Examples
+    --------
+    >>> e = RuleSoundnessError("the rule 'R' proved x ≤ 0 (exact), but x = 1 refutes it", rule="R")
+    >>> e.rule, isinstance(e, InternalError)
+    ('R', True)
+    """
+
+    def __init__(self, message: str = "", *, rule: str = "", witness=None):
+        super().__init__(message)
+        self.rule = rule
+        self.witness = witness

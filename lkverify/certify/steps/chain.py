@@ -33,12 +33,16 @@ import sympy
 
 from ...declare.symbols import t as _t
 from ...errors import InputError
+from ...options import Deadline
 from ...report.results import Kind, Result
 from ...status import Status
 from .measures import Measure, Region
 from .rules import Application, Context, Rule, Young, nonnegative
 
 __all__ = ["ChainResult", "Decay", "TermBound", "TermResult", "TermwiseBound", "lyapunov_steps"]
+
+#: the cheap witness search run against every proved term bound (a fixed amount of work)
+CROSS_EXAMINATION = {"starts": 2, "pieces": (("ends", "1/1000"),), "maxiter": 40, "seeds": 6}
 
 _WEAKEST = (Status.FAILED, Status.UNDECIDED, Status.SIMULATED, Status.ESTIMATED, Status.CERTIFIED)
 
@@ -225,7 +229,19 @@ class TermwiseBound:
         callable ``f(values)`` (an eigenvalue of a matrix parameter), evaluated exactly
         at the checked values.
     witness_seconds : float
-        Budget of the witness search of one term that the rule does not prove.
+        Accepted for backwards compatibility and ignored: the witness search of a term
+        does a fixed amount of work (``witness_starts`` local searches on each grid of
+        ``witness_pieces``), so its result is the same on every machine; only the budget
+        passed to :meth:`check` (the user's wall-clock cap) can cut it, and a cut search
+        leaves the term ``undecided`` saying so.
+    witness_starts : int
+        Random local searches per piece grid of the witness search of an unproved term.
+    witness_pieces : tuple of int
+        The equal-piece grids of that search (structured grids are added).
+    cross_examine : bool
+        Run a cheap witness search also on every term a rule proved
+        (:data:`CROSS_EXAMINATION`); a rechecked witness there is a bug of the rule:
+        :class:`~lkverify.errors.RuleSoundnessError`.
     part : tuple of str, optional
         Only these labelled terms form lhs (a step about part of V̇, as papers print them).
     exists : tuple of Symbol
@@ -276,6 +292,9 @@ class TermwiseBound:
     exists: tuple = ()
     terms: tuple = ()
     witness_time: object = None
+    witness_starts: int = 24
+    witness_pieces: tuple = (1, 2, 3, 5)
+    cross_examine: bool = True
 
     def __post_init__(self):
         problems = []
@@ -436,14 +455,11 @@ class TermwiseBound:
             constant_note = "; ".join(_constant_text(n, v, info) for a in apps for n, v, info in a.constants)
             detail = f"{rule}: {len(sum((list(a.conditions) for a in apps), []))} side conditions hold" + (
                 f"; {constant_note}" if constant_note else "")
+            if self.cross_examine:
+                self._cross_examine(tb, statement, rule, status, stated, ctx)
             return TermResult(tb.terms, statement, status, detail, rule, tuple(apps), bound=bound)
-        witness = None
+        witness, outcome = None, None
         if search:
-            from ...declare.terms import Term
-
-            sign = 1 if direction == "upper" else -1
-            labelled = [Term(sign * ctx.at(term.expr), text=term.text) for label in tb.terms
-                        for term in self.lhs_terms() if term.text == label]
             # constants only claimed to exist stay symbols: the witness refutes every value of them
             names = {str(c) for c in self.exists}
             keep = {k: v for k, v in constants.items() if k not in names}
@@ -451,7 +467,8 @@ class TermwiseBound:
             ctx.constants = {k: v for k, v in (saved or {}).items() if str(k) not in names}
             generic = ctx.at(_put(tb.bound, keep))
             ctx.constants = saved
-            witness = self._witness(labelled, generic, ctx)
+            outcome = self._witness(self._signed_terms(tb, ctx), generic, ctx)
+            witness = None if outcome is None else outcome.witness
         if witness is not None:
             from .rules import Printed
 
@@ -460,15 +477,50 @@ class TermwiseBound:
             return TermResult(tb.terms, statement, Status.FAILED,
                               f"refuted: {witness.text()}" + (f"; at the witness: {terms}" if terms else "") + why,
                               rule, tuple(apps), witness, bound)
-        return TermResult(tb.terms, statement, Status.UNDECIDED if status is not Status.FAILED else Status.UNDECIDED,
-                          f"not proved ({detail}); no witness found in {self.witness_seconds:g} s", rule,
+        if outcome is None:
+            searched = "no witness search (search=False)" if not search else "no witness search (outside its family)"
+        elif not outcome.complete:
+            searched = "undecided: the budget was spent before this witness search finished"
+        else:
+            searched = outcome.text()
+        return TermResult(tb.terms, statement, Status.UNDECIDED, f"not proved ({detail}); {searched}", rule,
                           tuple(apps), None, bound)
 
-    def _witness(self, expr, stated, ctx: Context):
-        try:
-            from .witnesses import search_witness
-        except ImportError:  # pragma: no cover - the module ships with the package
-            return None
+    def _signed_terms(self, tb: TermBound, ctx: Context) -> list:
+        """The lhs terms of a term bound at the values, negated for a lower bound (the search refutes ≤)."""
+        from ...declare.terms import Term
+
+        sign = 1 if self.direction == "upper" else -1
+        return [Term(sign * ctx.at(term.expr), text=term.text) for label in tb.terms
+                for term in self.lhs_terms() if term.text == label]
+
+    def _cross_examine(self, tb: TermBound, statement, rule, status, stated, ctx: Context) -> None:
+        """A cheap witness search against a proved term bound; a rechecked witness is a bug of the rule.
+
+        The bound searched is the stated one with the constants the rules certified (what the
+        result row calls proved); constants only claimed to exist that no rule valued stay
+        symbols (the witness must then refute every value).  Raises
+        :class:`~lkverify.errors.RuleSoundnessError` naming the rule and the witness.
+        """
+        from ...errors import RuleSoundnessError
+
+        if isinstance(ctx.budget, Deadline) and ctx.budget.expired:
+            return
+        outcome = self._witness(self._signed_terms(tb, ctx), stated, ctx, **CROSS_EXAMINATION)
+        if outcome is not None and outcome.witness is not None:
+            raise RuleSoundnessError(
+                f"the rule {rule!r} proved {self.name}: {statement} ({status.value}), but the witness "
+                f"{outcome.witness.text()} refutes it (rechecked in interval arithmetic); a bug of that rule",
+                rule=rule, witness=outcome.witness)
+
+    def _witness(self, expr, stated, ctx: Context, **limits):
+        """The SearchOutcome of the witness search of ``expr ≤ stated`` (None: outside the witness family).
+
+        No wall clock unless the check has a budget (then its deadline cuts the search).
+        """
+        from .witnesses import find_witness
+
+        limits = {"starts": self.witness_starts, "pieces": self.witness_pieces, **limits}
         lhs = expr  # labelled terms, already signed for an upper bound
         rhs = ctx.at(stated if self.direction == "upper" else -stated)
         measure_syms = {m.symbol for m in self.measures}
@@ -476,11 +528,11 @@ class TermwiseBound:
         lhs_syms = set().union(*[sympy.sympify(term.expr).free_symbols for term in lhs]) if lhs else set()
         free = (lhs_syms | sympy.sympify(rhs).free_symbols) - measure_syms - exists - {_t}
         nonneg = tuple(s_ for s_ in free if s_.is_nonnegative)  # free positive parameters: every value
+        budget = ctx.budget if isinstance(ctx.budget, Deadline) and ctx.budget.seconds is not None else None
         try:
-            return search_witness(lhs, rhs, system=self.system, values=ctx.values, measures=list(self.measures),
-                                  region=self.region, exists=tuple(exists), nonnegative=nonneg,
-                                  budget=ctx.seconds_left(self.witness_seconds),
-                                  **({} if self.witness_time is None else {"time": self.witness_time}))
+            return find_witness(lhs, rhs, system=self.system, values=ctx.values, measures=list(self.measures),
+                                region=self.region, exists=tuple(exists), nonnegative=nonneg, budget=budget,
+                                **limits, **({} if self.witness_time is None else {"time": self.witness_time}))
         except InputError:
             return None
 

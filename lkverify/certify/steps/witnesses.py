@@ -152,7 +152,8 @@ from ..intervals.rounding import float_down, float_up
 from ..regions import prove_zero
 from .measures import Measure, Region
 
-__all__ = ["UnsupportedClaim", "Witness", "search_witness"]
+__all__ = ["MAXITER", "PIECES", "STARTS", "SearchOutcome", "UnsupportedClaim", "Witness", "find_witness",
+           "search_witness"]
 
 #: rational rounding of the optimiser's point for the exact recheck
 _DENOMINATOR = 10 ** 6
@@ -160,6 +161,12 @@ _DENOMINATOR = 10 ** 6
 _RECHECKS = 6
 #: arb precision of the recheck (bits)
 _PREC = 128
+#: finer roundings tried when a positive candidate does not recheck at 1/10⁶ (violations of 10⁻¹² relative)
+_FINE_DENOMINATORS = (10 ** 12, 10 ** 18)
+#: the default, deterministic work of a search: equal-piece grids, starts per grid, iterations per start
+PIECES = (1, 2, 3, 5)
+STARTS = 24
+MAXITER = 200
 
 
 class UnsupportedClaim(UnsupportedInput, InputError):
@@ -405,10 +412,10 @@ class _Chart:
             self._lambdified = sympy.lambdify(syms, self.expr(syms), modules="numpy", cse=True)
         return self._lambdified(*P)
 
-    def exact(self, p: np.ndarray) -> tuple:
+    def exact(self, p: np.ndarray, denominator: int = _DENOMINATOR) -> tuple:
         """``(record, values)`` at the rational point near ``p``: the rational parameters (strings) and the
         exact value (one SymPy number per component), admissible by construction."""
-        q = [sympy.Rational(float(x)).limit_denominator(_DENOMINATOR) for x in p]
+        q = [sympy.Rational(float(x)).limit_denominator(denominator) for x in p]
         return [str(x) for x in q], self.expr(q)
 
 
@@ -507,9 +514,9 @@ class _FrameChart:
                 return False
         return True
 
-    def exact(self, p: np.ndarray) -> tuple:
+    def exact(self, p: np.ndarray, denominator: int = _DENOMINATOR) -> tuple:
         k = self._k(np.asarray(p, dtype=float).reshape(3, 1))[:, 0]
-        q = [sympy.Rational(float(x)).limit_denominator(_DENOMINATOR) for x in k]
+        q = [sympy.Rational(float(x)).limit_denominator(denominator) for x in k]
         for j in range(8):
             if self._admissible(q):
                 break
@@ -565,8 +572,8 @@ class _TimeChart:
     def value(self, p: np.ndarray) -> np.ndarray:
         return np.array([self._lo + (self._hi - self._lo) * math.sin(float(p[0])) ** 2])
 
-    def exact(self, p: np.ndarray) -> tuple:
-        q = sympy.Rational(float(self.value(p)[0])).limit_denominator(_DENOMINATOR)
+    def exact(self, p: np.ndarray, denominator: int = _DENOMINATOR) -> tuple:
+        q = sympy.Rational(float(self.value(p)[0])).limit_denominator(denominator)
         q = self.lo if _lt(q, self.lo) else self.hi if _lt(self.hi, q) else q
         return [str(q)], [q]
 
@@ -1083,11 +1090,20 @@ class _Problem:
         return sympy.ImmutableMatrix(sympy.Matrix.hstack(r[0], r[1], r[2]))
 
     # -- per piece count --------------------------------------------------------------------------
-    def offsets(self, m: int) -> list:
-        """Break points (offsets from t) of the piece grid, decreasing from H to 0."""
+    def offsets(self, m) -> list:
+        """Break points (offsets from t) of the piece grid, decreasing from H to 0.
+
+        ``m`` an int: m equal pieces (and the window ends); ``("ends", ε)``: pieces of length ε·H
+        at both sides of every window end (histories concentrated near one end of a window).
+        """
         if not self.history_states:
             return [sympy.Integer(0)]
-        pts = list(self.breaks) + [self.H * sympy.Rational(k, m) for k in range(1, m)]
+        if isinstance(m, tuple):
+            eps = sympy.Rational(m[1]) * self.H
+            near = [b + d for b in self.breaks for d in (-eps, eps)]
+            pts = list(self.breaks) + [q for q in near if not _lt(q, 0) and not _lt(self.H, q)]
+        else:
+            pts = list(self.breaks) + [self.H * sympy.Rational(k, m) for k in range(1, m)]
         out = []
         for p in sorted(pts, key=float, reverse=True):
             if out and abs(float(out[-1] - p)) < 1e-13 and sympy.simplify(out[-1] - p) == 0:
@@ -1352,6 +1368,14 @@ class _Model:
         self.scale = max(typical, 1e3 * noise, 1e-300)
         self.tol = max(1e-12, 10 * noise / self.scale)
 
+    def locally_positive(self, p: np.ndarray) -> bool:
+        """The objective at ``p`` exceeds float noise relative to the sides' sizes *at p* (a small history)."""
+        P = np.asarray(p, dtype=float).reshape(self.nparams, 1)
+        with np.errstate(all="ignore"):
+            val = min(float(np.asarray(o, dtype=float).ravel()[0]) for o in self._f(*self.zvalues(P)))
+            size = float(np.asarray(self._size(*self.zvalues(P)), dtype=float).ravel()[0])
+        return bool(np.isfinite(val) and np.isfinite(size) and val > 1e-12 * size and val > 0)
+
     def random_params(self, rng) -> np.ndarray:
         p = np.zeros(self.nparams)
         for slot in self.slots:
@@ -1433,12 +1457,12 @@ class _Model:
                 place(slot, float(c) / H)
 
     # -- exact -----------------------------------------------------------------------------------
-    def exact_point(self, p: np.ndarray):
+    def exact_point(self, p: np.ndarray, denominator: int = _DENOMINATOR):
         """``(records, zexact, zballs)`` at the exact point near ``p``: slot label → exact parameters
         (strings), slot symbol → exact value and → its arb ball."""
         records, zexact, zballs = {}, {}, {}
         for slot in self.slots:
-            record, vals = slot.chart.exact(p[slot.start:slot.start + slot.chart.nparams])
+            record, vals = slot.chart.exact(p[slot.start:slot.start + slot.chart.nparams], denominator)
             records[slot.label] = record
             for z, v in zip(slot.z, vals):
                 zexact[z] = v
@@ -1505,9 +1529,21 @@ def _optimise(model: _Model, p0: np.ndarray, deadline: Deadline, best: list, max
         return
 
 
-def _recheck(model: _Model, p: np.ndarray):
+def _recheck(model: _Model, p: np.ndarray, denominator: int = _DENOMINATOR):
     """The Witness at the rational point near ``p``, or None if the violation is not proved there."""
-    records, zexact, zballs = model.exact_point(p)
+    records, zexact, zballs = model.exact_point(p, denominator)
+    return _recheck_at(model, records, zexact, zballs)
+
+
+def _recheck_values(model: _Model, zexact: dict):
+    """The Witness at exact slot values ``zexact`` (slot symbol → rational; admissibility checked by the
+    caller), or None if the violation is not proved there."""
+    records = {slot.label: [str(zexact[z]) for z in slot.z] for slot in model.slots}
+    zballs = {z: enclose(v, prec=_PREC) for z, v in zexact.items()}
+    return _recheck_at(model, records, zexact, zballs)
+
+
+def _recheck_at(model: _Model, records, zexact, zballs):
     A = _ball(model.A, zballs)
     if not A > 0:
         return None
@@ -1602,7 +1638,8 @@ def _single_threaded(search):
 
 @_single_threaded
 def search_witness(lhs, rhs, *, system, values, measures, region=None, exists=(), nonnegative=(),
-                   pieces=(1, 2, 3, 5), starts=24, budget=None, seed=0, time=None) -> Witness | None:
+                   pieces=PIECES, starts=STARTS, budget=None, seed=0, time=None, maxiter=MAXITER,
+                   structured=True) -> Witness | None:
     """Search for a state and a history that refute ``lhs ≤ rhs``; return a rechecked :class:`Witness` or None.
 
     Parameters
@@ -1631,10 +1668,18 @@ def search_witness(lhs, rhs, *, system, values, measures, region=None, exists=()
     starts : int, default 24
         Local optimisations per piece count (every second a rotation start).
     budget : Budget, Deadline, float or None
-        Wall-clock limit (None: none), checked between optimisation steps; when it runs
-        out the best candidates so far are rechecked.  Building the exact expression of a
-        piece count is not interrupted.
+        Wall-clock limit (None, the default: none — the work is fixed by ``pieces``,
+        ``starts`` and ``maxiter``, so the result is the same on every machine), checked
+        between optimisation steps; when it runs out the best candidates so far are
+        rechecked.  Building the exact expression of a piece count is not interrupted.
+        :func:`find_witness` also says whether the search was cut.
     seed : int, default 0
+    maxiter : int, default 200
+        Iterations of each local optimisation (L-BFGS-B).
+    structured : bool, default True
+        Also try the structured starts of :mod:`.witness_seeds` (eigenvectors of the
+        quadratic part at t, histories concentrated near one end of a window, power
+        profiles) and their concentrated piece grids.
     time : number, pair (lo, hi) or None
         The witness time for a claim with an explicit t (time-varying coefficients h(t),
         ḣ(t) after ``values``): t is set to it before the window integrals are summed (the
@@ -1668,38 +1713,151 @@ def search_witness(lhs, rhs, *, system, values, measures, region=None, exists=()
     >>> w.violation[0] > 0
     True
     """
-    problem = _Problem(lhs, rhs, system, values, measures, region, exists, nonnegative, time)
-    if isinstance(pieces, numbers.Integral):
+    return find_witness(lhs, rhs, system=system, values=values, measures=measures, region=region, exists=exists,
+                        nonnegative=nonnegative, pieces=pieces, starts=starts, budget=budget, seed=seed, time=time,
+                        maxiter=maxiter, structured=structured).witness
+
+
+@dataclasses.dataclass(frozen=True)
+class SearchOutcome:
+    """What a witness search did: the witness (or None), and whether it ran to its end.
+
+    Attributes
+    ----------
+    witness : Witness or None
+    complete : bool
+        False when the wall-clock budget cut the search (a None witness then says less).
+    starts : int
+        Local optimisations run (structured starts included).
+    pieces : tuple
+        The piece grids searched (an int: equal pieces; ``("ends", ε)``: pieces of relative
+        length ε at both ends of every window).
+
+    Examples
+    --------
+    >>> SearchOutcome(None, True, 48, (1, 2)).text()
+    'no witness in 48 local searches on the piece grids (1, 2)'
+    >>> SearchOutcome(None, False, 3, (1,)).text()
+    'the budget was spent before this witness search finished (3 local searches)'
+    """
+
+    witness: Witness | None
+    complete: bool
+    starts: int = 0
+    pieces: tuple = ()
+
+    def text(self) -> str:
+        if self.witness is not None:
+            return self.witness.text()
+        if not self.complete:
+            return f"the budget was spent before this witness search finished ({self.starts} local searches)"
+        grids = ", ".join(str(m) if isinstance(m, int) else f"{m[0]} {m[1]}" for m in self.pieces)
+        return f"no witness in {self.starts} local searches on the piece grids ({grids})"
+
+
+def _grid_ok(m) -> bool:
+    """An equal-piece count (a positive int) or an end grid ``("ends", ε)`` with 0 < ε < 1/2 rational."""
+    if isinstance(m, tuple):
+        if len(m) != 2 or m[0] != "ends":
+            return False
+        try:
+            eps = sympy.Rational(m[1])
+        except (TypeError, ValueError, sympy.SympifyError):
+            return False
+        return bool(0 < eps < sympy.Rational(1, 2))
+    return not isinstance(m, bool) and isinstance(m, numbers.Integral) and m >= 1
+
+
+def _validated(pieces, starts, seed, maxiter) -> tuple:
+    if isinstance(pieces, numbers.Integral) or (isinstance(pieces, tuple) and pieces[:1] == ("ends",)):
         pieces = (pieces,)
     pieces = tuple(pieces)
-    if not pieces or any(isinstance(m, bool) or not isinstance(m, numbers.Integral) or m < 1 for m in pieces):
-        raise InputError(f"pieces: expected positive integers such as (1, 2, 3, 5), got {pieces!r}")
-    if isinstance(starts, bool) or not isinstance(starts, numbers.Integral) or starts < 1:
-        raise InputError(f"starts: expected a positive integer, got {starts!r}")
+    if not pieces or not all(_grid_ok(m) for m in pieces):
+        raise InputError(f"pieces: expected positive integers such as (1, 2, 3, 5) or end grids ('ends', '1/1000'), "
+                         f"got {pieces!r}")
+    for value, what in ((starts, "starts"), (maxiter, "maxiter")):
+        if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < 1:
+            raise InputError(f"{what}: expected a positive integer, got {value!r}")
     if isinstance(seed, bool) or not isinstance(seed, numbers.Integral):
         raise InputError(f"seed: expected an integer, got {seed!r}")
+    return pieces
+
+
+@_single_threaded
+def find_witness(lhs, rhs, *, system, values, measures, region=None, exists=(), nonnegative=(), pieces=PIECES,
+                 starts=STARTS, budget=None, seed=0, time=None, maxiter=MAXITER, structured=True,
+                 seeds=None) -> SearchOutcome:
+    """:func:`search_witness`, telling also whether the search ran to its end (:class:`SearchOutcome`).
+
+    ``seeds`` caps the structured starts per grid (None: all); with ``structured`` the end
+    grids :data:`~.witness_seeds.END_GRIDS` are added unless ``pieces`` names an end grid.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
+    >>> from lkverify.certify.steps.measures import norm_measure
+    >>> P = Parameters(); x = Vector("x", 2); n = norm_measure("n", x(t))
+    >>> sys_ = System([Equation(x, [Term(-x(t))])], parameters=P)
+    >>> out = find_witness(x(t).dot(x(t)), n.symbol ** 2, system=sys_, values={}, measures=[n], starts=2)
+    >>> out.witness is None, out.complete, out.text()
+    (True, True, 'no witness in 2 local searches on the piece grids (1)')
+    """
+    problem = _Problem(lhs, rhs, system, values, measures, region, exists, nonnegative, time)
+    pieces = _validated(pieces, starts, seed, maxiter)
     deadline = budget if isinstance(budget, Deadline) else Budget.of(budget).deadline()
     rng = np.random.default_rng(seed)
-    if not problem.history_states:
-        pieces = pieces[:1]
-    for m in pieces:
+    grids = list(pieces[:1] if not problem.history_states else pieces)
+    if structured and problem.history_states and all(isinstance(m, int) for m in grids):
+        from .witness_seeds import END_GRIDS, PROFILE_GRIDS
+
+        grids += [g for g in END_GRIDS + PROFILE_GRIDS if g not in grids]
+    done, runs = [], 0
+    for m in grids:
         if deadline.expired:
-            break
+            return SearchOutcome(None, False, runs, tuple(done))
         model = _Model(problem, m)
-        cands = []
         model.calibrate(rng)
-        for k in range(starts):
+        p0s = []
+        if structured:
+            from .witness_seeds import structured_starts
+
+            p0s = structured_starts(model, rng, seeds)
+        n_random = starts if m in pieces else 0          # the structured grids get structured starts only
+        cands = []
+        for k in range(n_random + len(p0s)):
             if deadline.expired:
                 break
-            rotation = k % 2 == 1 and bool(problem.rotating)
-            p0 = model.rotation_params(rng) if rotation else model.random_params(rng)
+            if k < len(p0s):
+                p0 = p0s[k]
+            else:
+                rotation = (k - len(p0s)) % 2 == 1 and bool(problem.rotating)
+                p0 = model.rotation_params(rng) if rotation else model.random_params(rng)
             best = [-np.inf, p0]
-            _optimise(model, p0, deadline, best)
+            _optimise(model, p0, deadline, best, maxiter=maxiter)
+            runs += 1
             if np.isfinite(best[0]):
                 cands.append((best[0], best[1]))
-        cands = sorted((c for c in cands if c[0] > model.tol), key=lambda c: -c[0])
-        for _, p in cands[:_RECHECKS]:
-            w = _recheck(model, p)
+        w = _recheck_best(model, cands)
+        if w is None and structured:
+            from .witness_seeds import exact_eigen_points
+
+            w = next((w for w in (_recheck_values(model, z) for z in exact_eigen_points(model)) if w is not None),
+                     None)
+        if w is not None:
+            return SearchOutcome(w, True, runs, tuple(done) + (m,))
+        if deadline.expired:
+            return SearchOutcome(None, False, runs, tuple(done))
+        done.append(m)
+    return SearchOutcome(None, True, runs, tuple(done))
+
+
+def _recheck_best(model: _Model, cands: list):
+    """The first of the best candidates that rechecks (at the coarse rounding, then at finer ones)."""
+    ok = sorted((c for c in cands if c[0] > model.tol or model.locally_positive(c[1])), key=lambda c: -c[0])
+    for _, p in ok[:_RECHECKS]:
+        for denominator in (_DENOMINATOR,) + _FINE_DENOMINATORS:
+            w = _recheck(model, p, denominator)
             if w is not None:
                 return w
     return None
