@@ -85,6 +85,7 @@ def test_lemma1_rejects_eps_outside_the_hypotheses(capsys):
     assert "0 < ε < 1" in capsys.readouterr().err
 
 
+@pytest.mark.slow  # about 15 s: two runs of the item; tests/certify/test_chain.py refutes the printed bound by default
 def test_printed_bound_step_of_theorem3_is_refuted():
     (item,) = find_items("aleksandrov2023.theorem3_bound")
     rep = item.run({})
@@ -100,6 +101,7 @@ def test_printed_bound_step_of_theorem3_is_refuted():
     assert next(r for r in rows if r.name.startswith("printed")).status is Status.UNDECIDED
 
 
+@pytest.mark.slow  # about 110 s: every constant of (15) and the simulated comparison
 def test_flagship_estimate_15_is_certified_and_compared_with_the_paper(capsys):
     code = main(["constants", "aleksandrov2023.theorem3", "--set", "a=0", "--set", "b=-1", "--set", "tau=1",
                  "--set", "mu=2", "--set", "F=diag(1,1,1)", "--json"])

@@ -87,6 +87,7 @@ def test_theorem3_wrong_coefficient_is_refuted(theorem3_derived):
     assert "2 ×" in diff.message
 
 
+@pytest.mark.slow  # about 35 s; tests/cli/test_cli.py checks the same sign difference by default
 def test_theorem1_printed_vdot_differs_in_exactly_one_sign():
     """Paper 000 prints +γ f^ν(t−τ) ωᵀL(t−τ); the derivation gives −γ f^ν(t−τ) ωᵀL(t−τ)."""
     th = item("aleksandrov2026.theorem1")
@@ -99,6 +100,7 @@ def test_theorem1_printed_vdot_differs_in_exactly_one_sign():
     assert diff.derived == ("∂/∂ω [(γ/2)ωᵀΘω] · (Θ⁻¹(−f^ν(t−τ)L(t−τ)))",)
 
 
+@pytest.mark.slow  # about 35 s; the Theorem 3 forms below are exact by default
 def test_theorem1_printed_vdot_with_that_sign_corrected_is_exact():
     th = item("aleksandrov2026.theorem1")
     claim = th.printed[0]
