@@ -39,6 +39,7 @@ def checked(values):
     return {step.role: (step, step.check(values)) for step in steps}
 
 
+@pytest.mark.slow  # the module fixture `checked` proves all three steps (about 40 s)
 def test_the_chain_of_theorem3_is_proved_term_by_term(checked):
     for role, (step, res) in checked.items():
         assert res.status in (Status.EXACT, Status.CERTIFIED), (role, res.detail)
@@ -49,6 +50,7 @@ def test_the_chain_of_theorem3_is_proved_term_by_term(checked):
     assert 5.6 < consts["c_A"] < 5.67 and 0.9 < consts["c_B"] < 0.92  # estimates 5.608, 0.908 (bench_templates)
 
 
+@pytest.mark.slow  # the module fixture `checked` proves all three steps (about 40 s)
 def test_every_template_constant_is_certified_within_one_percent_of_its_estimate(checked):
     seen = 0
     for _, res in checked.values():
@@ -61,6 +63,7 @@ def test_every_template_constant_is_certified_within_one_percent_of_its_estimate
     assert seen == 4  # κ1 (twice: V ≥ L and V ≤ U), c_A, c_B
 
 
+@pytest.mark.slow  # the module fixture `checked` proves all three steps (about 40 s)
 def test_the_decay_of_the_checked_chain_is_certified(checked, values):
     rows, status, detail = C.DECAY.certify(checked, values, budget=60)
     assert status is Status.CERTIFIED, detail
@@ -68,6 +71,7 @@ def test_the_decay_of_the_checked_chain_is_certified(checked, values):
     assert got["delta_tilde"] > 0 and got["d1"] > 0 and got["d3"] > 0
 
 
+@pytest.mark.slow  # the module fixture `checked` proves all three steps (about 40 s)
 def test_a_region_twice_too_large_fails_with_a_witness_point(checked, values):
     rows, status, detail = C.DECAY.certify(checked, values, budget=60)
     claimed = {r.name: sympy.Rational(r.value["value"]) for r in rows if r.kind == "constant"}
@@ -81,6 +85,7 @@ def test_a_region_twice_too_large_fails_with_a_witness_point(checked, values):
     assert "witness" in detail2
 
 
+@pytest.mark.slow  # the module fixture `checked` proves all three steps (about 40 s)
 def test_a_template_constant_at_090_of_its_certified_value_is_refuted(values, checked):
     kappa = checked["lower"][1].constants["kappa1"]
     step = _only(LOWER, "(s×r)ᵀF⁻¹Θω", bound=-sympy.Rational(9, 10) * sympy.Rational(kappa) * C.e * C.w)
@@ -99,6 +104,7 @@ def test_an_absolute_value_dropped_is_refuted(values):
     assert res.terms[0].witness.violation[0] > 0
 
 
+@pytest.mark.slow  # the module fixture `checked` proves all three steps (about 40 s)
 def test_an_exponent_off_by_one_is_refuted(values, checked):
     # Hölder's measure to the power μ + 1 instead of μ
     bad = _bound(VDOT, J_LABEL).bound * C.j
@@ -151,6 +157,7 @@ def test_the_printed_bound_holds_for_b_positive():
     assert printed.status is Status.UNDECIDED
 
 
+@pytest.mark.slow  # about 70 s: the whole report of Theorem 3
 def test_theorem3_report_lists_the_chain(values):
     report = theorem3.run({}, budget=120)
     names = [link.name for link in report.chain]
@@ -163,6 +170,7 @@ def test_theorem3_report_lists_the_chain(values):
         json.dumps(card)
 
 
+@pytest.mark.slow  # the module fixture `checked` proves all three steps (about 40 s)
 def test_the_chain_on_a_region_twice_too_large_names_the_failed_decay_link_with_a_point(checked):
     choices = dict(C.CHOICES)
     values = P.resolve({**choices, "delta_e": "1/100", "delta_w": "3142/9995"}, use_defaults=True)
