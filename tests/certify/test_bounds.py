@@ -656,6 +656,7 @@ def test_taylor_certifies_a_flat_quadratic_form_with_fewer_boxes():
     assert out["taylor"].boxes * 3 < out["mean-value"].boxes
 
 
+@pytest.mark.slow  # about 15 s: a 4-variable cap; the Taylor strategy's own tests below run by default
 def test_c_A_template_is_certified_within_one_percent_by_taylor():
     """The c_A template of aleksandrov2023.theorem3 (Θ = diag(5, 6, 4), F = I, r = (1,1,1)/√3) against
     the slow path sup over the cap of λ_max(M(s)), M(s) the symmetric matrix of the form in ω."""
