@@ -109,3 +109,25 @@ def test_the_command_line_maps_the_error_to_exit_3(monkeypatch, capsys):
     assert cli.main(["list"]) == 3
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "RuleSoundnessError" in err and "the rule 'R'" in err
+
+
+def _paper002_lam_c9_step(constant):
+    """Paper 002 Theorem 1's term −λq̇ᵀ∂Π/∂q ≤ κ‖q̇‖‖q‖³ at λ = 10, 'proved' by the liar with κ = constant."""
+    import importlib
+
+    T = importlib.import_module("lkverify.proofs.aleksandrov2023.theorem1_bound")
+    label = "−λq̇ᵀ∂Π/∂q"
+    bound = constant * T.W_.symbol * T.E_.symbol ** 3
+    step = T.vdot.with_bounds(bounds=[TermBound(label, bound, Liar(bound))], rhs=bound, part=(label,))
+    return step, T.P3.resolve(T.CHECK_VALUES, use_defaults=True)
+
+
+def test_the_halved_direction_domain_of_issue_22_would_have_been_caught():
+    # the Template defect certified λc9 = 12.83 at λ = 10; the supremum is 13.452 (at q ∝ (0.95, 0.31))
+    step, values = _paper002_lam_c9_step(R(1283, 100))
+    with pytest.raises(RuleSoundnessError) as info:
+        step.check(values)
+    q = [info.value.witness.state[f"q_{i}(t)"] for i in (1, 2)]
+    assert abs(abs(q[1] / q[0]) - 0.31 / 0.95) < 0.05
+    step, values = _paper002_lam_c9_step(R(1346, 100))                # above the supremum: not refuted
+    assert step.check(values).status is Status.EXACT
