@@ -14,6 +14,7 @@ def _check(terms):
     return dataclasses.replace(derivation2, terms=tuple(terms)).check({}, values={}, budget=120)
 
 
+@pytest.mark.slow  # about 30 s on a loaded machine
 def test_vdot_is_exact_for_every_h():
     assert derivation2.check({}, values={}, budget=120).status is Status.EXACT
 

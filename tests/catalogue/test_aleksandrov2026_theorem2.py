@@ -41,6 +41,7 @@ def test_mutated_vdot_is_refuted(mutation):
     assert res.status is Status.FAILED, res.as_text()
 
 
+@pytest.mark.slow  # about 50 s on a loaded machine: the whole chain; V̇ exact and its mutations refuted run by default
 def test_theorem2_states_the_derivation_and_is_established_by_its_chain():
     rep = theorem2.run({}, budget=300)
     vdot = next(r for r in rep.results if r.name == "Vdot_structured")

@@ -163,6 +163,7 @@ def test_remark3_point_is_established():
 
 
 # -- the printed V̇ bound with c5 … c10 -------------------------------------------------------------
+@pytest.mark.slow  # about 10 s on a loaded machine
 def test_printed_vdot_bound_holds_with_plus_c10(values):
     from lkverify.proofs.aleksandrov2026.theorem2_chain import printed_vdot_bound
 

@@ -165,6 +165,7 @@ def _theorem2_run(values):
     return th, rep, {r.name: r for r in rep.results}
 
 
+@pytest.mark.slow  # about 15 s on a loaded machine; the float kernel and tiny exact differences run by default
 def test_theorem2_decides_assumption1_at_the_papers_kernel():
     th, rep, res = _theorem2_run({})
     a1 = res["Assumption 1"]
@@ -173,6 +174,7 @@ def test_theorem2_decides_assumption1_at_the_papers_kernel():
     assert "Assumption 1 (∫" not in rep.verdict
 
 
+@pytest.mark.slow  # about 25 s on a loaded machine
 def test_theorem2_with_other_kernels():
     from lkverify.declare.parse import parse_value
 

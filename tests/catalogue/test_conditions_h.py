@@ -139,6 +139,7 @@ def _theorem1_run(values):
     return rep, {r.name: r for r in rep.results}
 
 
+@pytest.mark.slow  # about 25 s on a loaded machine; a fast-decaying h is refuted by default
 def test_theorem1_decides_the_conditions_on_h_at_the_papers_h():
     rep, res = _theorem1_run({})
     assert res["(5), (10), (11) on h"].status is Status.EXACT
@@ -156,6 +157,7 @@ def test_theorem1_refutes_the_conditions_for_a_fast_decaying_h_and_still_proves_
     assert rep.verdict.startswith("failed: hypotheses")
 
 
+@pytest.mark.slow  # about 15 s on a loaded machine
 def test_theorem1_with_a_slower_h_and_its_nu():
     from lkverify.declare.parse import parse_value
 

@@ -19,6 +19,7 @@ def _refuted(res):
     return term.witness
 
 
+@pytest.mark.slow  # about 35 s on a loaded machine
 def test_paper000_theorem2_gamma_beta_c7_refuted_for_beta_negative_and_corrected():
     v = P000.resolve(REMARK3, use_defaults=True)
     (theorem2,) = find_items("aleksandrov2026.theorem2")
@@ -83,6 +84,7 @@ def test_theorem3_caps_are_exact_and_below_the_print():
     assert caps(v2)[2] == 10
 
 
+@pytest.mark.slow  # about 30 s on a loaded machine
 def test_paper000_theorem1_c5_to_c10_bound_is_proved_on_the_exact_vdot():
     import dataclasses
 

@@ -73,6 +73,7 @@ def test_nested_deadlines_respect_the_outer_budget():
     assert time.monotonic() - t0 < 5
 
 
+@pytest.mark.slow  # about 20 s on a loaded machine: a whole check
 def test_check_with_the_largest_accepted_budget_runs(capsys):
     code, out, err = run(capsys, "check", "aleksandrov2026.theorem1", "--budget", "1e6")
     assert code == 1 and "Traceback" not in err      # the printed formula is refuted: exit 1
