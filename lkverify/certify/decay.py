@@ -327,8 +327,26 @@ def _q(x) -> sympy.Rational:
 
 
 def _monomials(expr, variables):
-    poly = sympy.Poly(sympy.expand(expr), *variables)
+    """(total degree, coefficient) of each monomial of a polynomial in ``variables``.
+
+    Raises
+    ------
+    UnsupportedInput
+        ``expr`` is not a polynomial in them (e.g. a power e^(5/2) of a non-integer order μ).
+    """
+    try:
+        poly = sympy.Poly(sympy.expand(expr), *variables)
+    except sympy.PolynomialError:
+        names = ", ".join(map(str, variables))
+        raise UnsupportedInput(f"the decay model's L, U, W must be polynomials in {names} for the scaling argument, "
+                               f"got {_short(expr)} (a power with a non-integer exponent, e.g. of an order μ that "
+                               f"is not a whole number); choose such a parameter or prove the decay otherwise") from None
     return [(sum(m), c) for m, c in poly.terms()]
+
+
+def _short(expr, limit: int = 120) -> str:
+    text = str(expr)
+    return text if len(text) <= limit else text[:limit] + "…"
 
 
 def _check_structure(model: DecayModel) -> list[str]:

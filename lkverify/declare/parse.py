@@ -212,6 +212,8 @@ class _Evaluator:
         )
 
     def nonfinite(self, got: str) -> InputError:
+        if self.text.lstrip().startswith(("[", "diag")):  # an entry of a matrix or vector
+            return self.fail(f"expected finite real entries, got {got}", "replace it by a finite number")
         return self.fail(
             f"expected a finite real number, got {got}",
             f"pass e.g. {self.example}",
@@ -385,7 +387,7 @@ class _Evaluator:
         if ident in _CONSTANTS:
             return _CONSTANTS[ident]
         if ident.lower() in _NONFINITE_NAMES:
-            raise self.nonfinite(self.text if len(self.text) <= 40 else ident)
+            raise self.nonfinite(ident if self.text.strip() == ident else f"{ident} in {_quote(self.text)}")
         if ident in _FUNCTIONS:
             raise self.fail(
                 f"{ident} is a function but is used without arguments in {_quote(self.text)}",

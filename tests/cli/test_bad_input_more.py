@@ -46,6 +46,70 @@ def one_line(err: str) -> str:
     return lines[0]
 
 
+@pytest.fixture
+def no_chain(monkeypatch):
+    """Fail if a bound step, the search of the choices or the decay link starts."""
+    from lkverify.certify.steps.chain import TermwiseBound
+    from lkverify.catalogue.items import Theorem
+
+    def boom(*a, **k):
+        raise AssertionError("a costly link started although a hypothesis failed")
+
+    monkeypatch.setattr(TermwiseBound, "check", boom)
+    monkeypatch.setattr(Theorem, "chosen", boom)
+
+
+# -- a failing hypothesis stops the chain ------------------------------------------------------------
+
+
+def test_a_failing_hypothesis_mu_stops_the_chain(capsys, no_chain):
+    code, out, err = run(capsys, "check", "aleksandrov2023.theorem3", "--set", "mu=0.5", "--json", "--quiet")
+    assert code == 1, err
+    assert "internal error" not in err
+    doc = json.loads(out)
+    assert doc["verdict"].startswith("failed: hypotheses")
+    assert "mu > 1" in doc["verdict"] and "margin -1/2" in doc["verdict"]
+    by = {r["name"]: r for r in doc["results"]}
+    assert by["mu > 1"]["status"] == "failed"
+    steps = [r for r in doc["results"] if r["kind"] == "bound"]
+    assert steps and all(r["status"] == "undecided" and "hypothes" in r["detail"] for r in steps)
+    assert not any(r["kind"] == "region" for r in doc["results"])
+    (hyp,) = [link for link in doc["chain"] if link["link"] == "hypotheses"]
+    assert hyp["status"] == "failed" and "mu > 1" in hyp["detail"]
+
+
+def test_a_failing_hypothesis_text_report(capsys, no_chain):
+    code, out, err = run(capsys, "check", "aleksandrov2023.theorem3", "--set", "mu=0.5", "--quiet")
+    assert code == 1 and "Traceback" not in err and "internal error" not in err
+    assert "verdict: failed: hypotheses" in out and "mu > 1" in out
+
+
+@pytest.mark.parametrize("h", ["-1", "0", "1", "-(1+t)**(-1)"])
+def test_h_outside_5_fails_the_hypothesis_first(capsys, no_chain, h):
+    # h ≤ 0 (or h ↛ 0) is outside (5): decided first (failed, exit 1), as --set "h=(1+t)**(-6/5)" fails (11)
+    code, out, err = run(capsys, "check", "aleksandrov2017.theorem1", "--set", f"h={h}", "--json", "--quiet")
+    assert code == 1, err
+    assert "internal error" not in err
+    doc = json.loads(out)
+    assert doc["verdict"].startswith("failed: hypotheses") and "(5)" in doc["verdict"]
+    assert all(r["status"] == "undecided" for r in doc["results"] if r["kind"] == "bound")
+
+
+def test_failing_hypothesis_in_a_users_file_stops_the_bound_claims(capsys, tmp_path):
+    path = tmp_path / "mine.py"
+    path.write_text(BASE + textwrap.dedent('''
+        from lkverify import BoundClaim
+        step = BoundClaim("V̇ ≤ −ax²", V, system, lhs="Vdot", rhs=-a * x(t)[0] ** 2, role="decrease")
+        th = Theorem("th", system=system, functional=V, hypotheses=[Hypothesis("a > 1", a - 1)], bounds=[step])
+    '''))
+    code, out, err = run(capsys, "check", str(path), "--set", "a=1/2", "--json")
+    assert code == 1, err
+    doc = json.loads(out)
+    assert doc["verdict"].startswith("failed: hypotheses") and "a > 1" in doc["verdict"]
+    (step,) = [r for r in doc["results"] if r["kind"] == "bound"]
+    assert step["status"] == "undecided" and "a > 1" in step["detail"]
+
+
 # -- time-varying histories ----------------------------------------------------------------------------
 
 
@@ -157,3 +221,39 @@ def test_the_readme_proof_still_exits_0_when_established(capsys, tmp_path):
     path.write_text(block)
     code, out, _ = run(capsys, "check", str(path), "--set", "a=3", "--json")
     assert code == 0 and json.loads(out)["verdict"].startswith("established")
+
+
+# -- siblings: a parameter inside the hypotheses that the decay argument does not cover --------------------------
+
+
+def test_a_non_polynomial_decay_model_is_unsupported_not_a_crash():
+    import sympy
+
+    from lkverify import UnsupportedInput
+    from lkverify.certify.decay import DecayModel, certify_model, estimate_decay
+
+    w, e = sympy.symbols("w e", nonnegative=True)
+    half, Q = sympy.Rational(1, 2), w ** 2 + e ** 2
+    m = DecayModel("toy", (w, e), {w: half, e: half}, Q, Q, -w ** 3 - e ** sympy.Rational(5, 2),
+                   sympy.Rational(3, 2), (w, e), {}, {"d1": e, "d2": w})
+    with pytest.raises(UnsupportedInput, match="must be polynomials in w, e"):  # was PolynomialError (exit 3)
+        estimate_decay(m)
+    with pytest.raises(UnsupportedInput, match="non-integer exponent"):
+        certify_model(m)
+
+
+@pytest.mark.slow  # the whole chain of Theorem 3 at μ = 3/2 (about 50 s on a loaded machine)
+def test_theorem3_at_a_fractional_order_is_undecided_not_exit_3(capsys):
+    code, out, err = run(capsys, "check", "aleksandrov2023.theorem3", "--set", "mu=3/2", "--json", "--quiet")
+    assert code == 1 and "internal error" not in err, err
+    doc = json.loads(out)
+    assert doc["verdict"].startswith("undecided: decay") and "polynomials" in doc["verdict"]
+
+
+@pytest.mark.parametrize("value,entry", [("[[nan,0],[0,-0.9]]", "nan"), ("[[inf,0],[0,-0.9]]", "inf"),
+                                         ("diag(1,nan)", "nan")])
+def test_a_non_finite_matrix_entry_is_named(capsys, value, entry):
+    code, _, err = run(capsys, "linear", "--set", f"A={value}")
+    assert code == 2
+    line = one_line(err)
+    assert f"got {entry} in '{value}'" in line and "finite" in line and "A=2" not in line
