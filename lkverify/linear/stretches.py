@@ -12,8 +12,9 @@ delay h₀ of such an interval decides all of it:
 
 The delays with a root on the axis are enclosed rigorously (:func:`crossing_enclosures`): every
 crossing frequency ω > 0 is a real root of the exact polynomial P of
-:func:`~lkverify.linear.crossing.frequency_polynomial`, isolated exactly in a rational interval
-of width 2⁻¹¹⁰; at each, the roots z of q(ω, z) are enclosed by arb (``acb_poly.roots``: each
+:func:`~lkverify.linear.crossing.frequency_polynomial`, isolated by python-flint
+(``fmpz_poly.complex_roots``: isolating balls, real roots with an exact zero imaginary part) at
+192 bits; at each, the roots z of q(ω, z) are enclosed by arb (``acb_poly.roots``: each
 ball holds exactly one root for every ω of the ball); those whose modulus may be 1 give the
 delays h = (−arg z + 2πk)/ω as balls (a superset of the crossing delays: a spurious one only
 splits an interval); a root s = 0 occurs where det(A + A_d + hD) = 0 (exact real roots).
@@ -40,12 +41,11 @@ import math
 from fractions import Fraction
 
 import sympy
-from flint import acb, acb_poly, arb, ctx, fmpq
+from flint import acb, acb_poly, arb, ctx, fmpq, fmpz_poly
 
 from ..status import Status
 from .hierarchy import certify_delay
 from .instability import refute_stability
-from .interval import _ball
 from .crossing import frequency_polynomial
 from .model import LinearDelaySystem
 from .spectrum import DEFAULT_NODES, spectral_abscissa
@@ -53,8 +53,6 @@ from ..certify.intervals import float_down, float_up, lower_fraction, upper_frac
 
 __all__ = ["CertifiedStretch", "certify_stretches", "crossing_enclosures"]
 
-#: width of the exact isolating intervals of the crossing frequencies
-FREQUENCY_WIDTH = Fraction(1, 2 ** 110)
 #: arb precision (bits) of the crossing enclosures
 PRECISION = 192
 #: LMI orders tried at the sample delay of an estimated stable interval
@@ -132,6 +130,17 @@ def _delays(phi: arb, omega: arb, h_max: float) -> list:
     return out
 
 
+def _real_roots(poly: sympy.Poly) -> list:
+    """Balls of the real roots of a rational polynomial (python-flint: isolated, real ones with exact zero
+    imaginary part), at the current precision; empty for a constant."""
+    if poly.degree() <= 0:
+        return []
+    coeffs = [sympy.Rational(c) for c in poly.all_coeffs()]
+    scale = sympy.ilcm(*[c.q for c in coeffs])
+    fz = fmpz_poly([int(c * scale) for c in reversed(coeffs)])
+    return [r.real for r, _ in fz.complex_roots() if r.imag.is_exact() and r.imag == 0]
+
+
 def crossing_enclosures(system: LinearDelaySystem, h_max: float):
     """Rational intervals covering every delay h ∈ (0, h_max] with a root on the imaginary axis; or (None, why).
 
@@ -155,32 +164,29 @@ def crossing_enclosures(system: LinearDelaySystem, h_max: float):
     P, q, (z, w) = found
     while P.degree() > 0 and P.eval(0) == 0:          # ω = 0 is the root s = 0, decided below
         P = sympy.Poly(sympy.quo(P.as_expr(), w), w, domain="QQ")
-    out = []
-    with ctx.workprec(PRECISION):
-        for (a, b), _ in P.intervals(eps=sympy.Rational(FREQUENCY_WIDTH.numerator, FREQUENCY_WIDTH.denominator)):
-            a, b = Fraction(int(a.p), int(a.q)), Fraction(int(b.p), int(b.q))
-            if b <= 0:
-                continue
-            if a <= 0:
-                return None, f"a crossing frequency not separated from 0 ([{float(a):.3g}, {float(b):.3g}])"
-            omega = _ball(a, b)
-            try:
-                zs = _z_polynomial(q, z, w, omega).roots(tol=2.0 ** -100, maxprec=4 * PRECISION)
-            except ValueError:
-                return None, f"the roots z of q(ω, z) at ω ≈ {float(a):.9g} could not be isolated"
-            for zb in zs:
-                if abs(zb) > 1 or abs(zb) < 1:         # certainly not unimodular: no crossing from this z
-                    continue
-                out += _delays(_phase(zb), omega, h_max)
     hs = sympy.Symbol("h")
     Dm = system.kernel[0] if system.has_distributed else sympy.zeros(system.n, system.n)
     p = sympy.Poly(sympy.expand((system.A + system.Ad + hs * Dm).det()), hs)
     if p.is_zero:
         return None, "s = 0 is a root at every delay (det(A + A_d + hD) ≡ 0)"
-    if p.degree() > 0:
-        for (a, b), _ in p.intervals(eps=sympy.Rational(1, 2 ** 110)):
-            if b > 0 and a <= h_max:
-                out.append((Fraction(int(a.p), int(a.q)), Fraction(int(b.p), int(b.q))))
+    out = []
+    with ctx.workprec(PRECISION):
+        for omega in _real_roots(P):
+            if not omega > 0:                          # ω < 0: the conjugate roots (real matrices)
+                if omega < 0:
+                    continue
+                return None, f"a crossing frequency not separated from 0 ({omega})"
+            try:
+                zs = _z_polynomial(q, z, w, omega).roots(tol=2.0 ** -100, maxprec=4 * PRECISION)
+            except ValueError:
+                return None, f"the roots z of q(ω, z) at ω ≈ {float(omega.mid()):.9g} could not be isolated"
+            for zb in zs:
+                if abs(zb) > 1 or abs(zb) < 1:         # certainly not unimodular: no crossing from this z
+                    continue
+                out += _delays(_phase(zb), omega, h_max)
+        for root in _real_roots(p):                    # s = 0 a root: det(A + A_d + hD) = 0
+            if root.upper() > 0 and root.lower() <= h_max:
+                out.append((lower_fraction(root), upper_fraction(root)))
     out.sort()
     merged = []
     for lo, hi in out:
@@ -188,7 +194,7 @@ def crossing_enclosures(system: LinearDelaySystem, h_max: float):
             merged[-1] = (merged[-1][0], max(hi, merged[-1][1]))
         else:
             merged.append((lo, hi))
-    how = (f"{len(merged)} crossing delay(s) in (0, {h_max:g}] enclosed: frequencies isolated exactly (width 2^-110), "
+    how = (f"{len(merged)} crossing delay(s) in (0, {h_max:g}] enclosed: frequencies isolated by flint (192 bits), "
            f"the roots z of q(ω, z) in arb, h = (−arg z + 2πk)/ω in arb; s = 0 from det(A + A_d + hD) exactly")
     return merged, how
 
