@@ -140,17 +140,13 @@ def linear_report(values: dict, *, orders=DEFAULT_ORDERS, h_max: float = 20.0, h
     t_spec = time.perf_counter() - t0
     if hq is None:
         say("certified intervals: crossing delays enclosed, one proof per interval")
-        t1 = time.perf_counter()
-        from .stretches import certify_stretches
-
-        iv = dataclasses.replace(iv, certified=certify_stretches(system, h_max, estimated=iv.intervals))
-        t_cert = time.perf_counter() - t1
+        iv, certified_row = _certified(system, iv, h_max)
     shown = ", ".join(f"({lo:.7g}, {hi:.7g})" if lo > 0 else f"[0, {hi:.7g})" for lo, hi in iv.intervals) or "none"
     results.append(Result("linear", "stability intervals (spectral)", Status.ESTIMATED,
                           {"intervals": [list(x) for x in iv.intervals], "method": iv.method},
                           f"stable for h in {shown} within [0, {h_max:g}]; {iv.detail}; {t_spec:.2f} s"))
     if iv.certified:
-        results.append(_certified_row(iv, h_max, t_cert))
+        results.append(certified_row)
     if iv.margin is not None:
         results.append(Result("linear", "delay margin (spectral)", Status.ESTIMATED, iv.margin,
                               f"the first crossing delay, from the crossing analysis ({iv.method}); "
@@ -174,6 +170,15 @@ def linear_report(values: dict, *, orders=DEFAULT_ORDERS, h_max: float = 20.0, h
         path = plot_linear(system, plot, intervals=iv, h=None if hq is None else float(hq), certified=certified)
         details = (f"figure: {path}",)
     return Report("linear", dict(values), tuple(results), verdict, text_details=details)
+
+
+def _certified(system, iv, h_max):
+    """``iv`` with its certified stretches (:mod:`lkverify.linear.stretches`), and their report row."""
+    from .stretches import certify_stretches
+
+    t0 = time.perf_counter()
+    iv = dataclasses.replace(iv, certified=certify_stretches(system, h_max, estimated=iv.intervals))
+    return iv, (_certified_row(iv, h_max, time.perf_counter() - t0) if iv.certified else None)
 
 
 def _certified_row(iv, h_max, seconds) -> Result:

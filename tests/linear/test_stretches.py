@@ -89,3 +89,25 @@ def test_an_irrational_entry_gives_points_only():
     st = certify_stretches(system, 10, estimated=stability_intervals(system, h_max=10).intervals, orders=(1,))
     assert [(s.kind, s.sample, s.point, s.status) for s in st] == [("stable", 5, True, Status.CERTIFIED)]
     assert "single delay h = 5 only, not on an interval" in st[0].detail
+
+
+def test_hayes_closed_form_pi_over_2():
+    # x′ = −x(t − h): stable iff h < π/2; further root pairs cross at h = π/2 + 2πk (ω = 1, z = e^{−iωh} = −i)
+    import math
+    system = LinearDelaySystem([[0]], Ad=[[-1]])
+    enc, _ = crossing_enclosures(system, 10)
+    assert [round(float(a), 12) for a, _ in enc] == [round(math.pi / 2 + 2 * math.pi * k, 12) for k in range(2)]
+    assert all(float(a) <= math.pi / 2 + 2 * math.pi * k <= float(b) + 1e-15 for k, (a, b) in enumerate(enc))
+    st = certify_stretches(system, 10)
+    assert [s.kind for s in st] == ["stable", "unstable", "unstable"] and all(s.holds for s in st)
+    assert abs(st[0].hi - math.pi / 2) < 1e-14
+
+
+def test_the_phase_is_enclosed_across_the_branch_cut():
+    from flint import acb, arb
+
+    from lkverify.linear.stretches import _phase
+    z = acb(arb(-1, 1e-20), arb(0, 1e-20))        # z = −1 with a ball that straddles the negative real axis
+    phi = _phase(z)
+    assert phi.overlaps(arb.pi()) and phi.contains(3.141592653589793) and float(phi.rad()) < 1e-15
+    assert _phase(acb(0, -1)).overlaps(-arb.pi() / 2) and abs(float(_phase(acb(0, -1)).mid()) + 1.5707963267948966) < 1e-15
