@@ -5,7 +5,9 @@ Run:  python benchmarks/bench_linear.py [--orders 0,1,2,3,4]
 For the classic example (Gu, Kharitonov & Chen 2003), Gu's example (interval not starting at 0)
 and the distributed-delay example: the time of the crossing analysis, and per order of the
 hierarchy the certified delays, the number of SDP solves, the time per solve and the total
-(SDP compile, bisection, exact re-verification at the reported ends).  Wall and CPU time are
+(SDP compile, bisection, exact re-verification at the reported ends); then the certified
+stable/unstable intervals (crossing delays enclosed in arb, one proof per interval) and the
+interval Newton refutation at an unstable delay.  Wall and CPU time are
 both printed (a loaded machine inflates the wall time).  Numbers are printed, never asserted.
 """
 
@@ -42,7 +44,8 @@ def main() -> None:
           f"Python {platform.python_version()}, load {os.getloadavg()[0]:.1f}")
     (_, w, c) = _timed(lambda: __import__("lkverify.linear"))
     print(f"import lkverify.linear: {w:.2f} s wall, {c:.2f} s CPU")
-    from lkverify.linear import LinearDelaySystem, certified_interval, stability_intervals
+    from lkverify.linear import (LinearDelaySystem, certified_interval, certify_stretches, refute_stability,
+                                 stability_intervals)
 
     for name in args.examples.split(","):
         sys = LinearDelaySystem(**EXAMPLES[name])
@@ -59,6 +62,14 @@ def main() -> None:
             print(f"  {m.method:22s} {m.status.value:9s} {lo}{up}  {m.solves:3d} solves "
                   f"{1000 * w / max(m.solves, 1):6.1f} ms/solve  {w:6.2f} s wall  {c:6.2f} s CPU")
         print(f"  all orders: {tw:.2f} s wall, {tc:.2f} s CPU")
+        st, w, c = _timed(lambda: certify_stretches(sys, 10, estimated=iv.intervals))
+        shown = ", ".join(f"{s.kind} ({s.lo:.7g}, {s.hi:.7g}) {s.status.value}" for s in st)
+        print(f"  certified intervals: {shown}  [{w:.2f} s wall, {c:.2f} s CPU]")
+        bad = next((s for s in st if s.kind == "unstable"), None)
+        if bad is not None:
+            r, w, c = _timed(lambda: refute_stability(sys, bad.sample))
+            print(f"  refuted at h = {bad.sample}: {r.status.value}, root {r.root.enclosure if r.root else '—'}  "
+                  f"[{1000 * w:.1f} ms wall, {1000 * c:.1f} ms CPU]")
 
 
 if __name__ == "__main__":
