@@ -18,7 +18,10 @@ the complex interval Newton test, in python-flint ``acb`` balls:
    f(s) − f(s₀) = c(s)(s − s₀) with c(s) = ∫_0^1 f′(s₀ + t(s − s₀)) dt in the convex box F, so
    s ↦ s₀ − f(s₀)/c(s) maps S into N(S) ⊂ S and its fixed point (Brouwer) is a root; two roots
    s₁ ≠ s₂ would give 0 = c(s₁ − s₂) with c ∈ F ∌ 0;
-4. Re S > 0 (its lower end, outward rounded) puts that root in the *open* right half-plane.
+4. Re S > 0 (its lower end, outward rounded) puts that root in the *open* right half-plane;
+5. cross-examination: the certified root must also be a root of the float characteristic matrix
+   of :class:`~lkverify.linear.model.LinearDelaySystem` (independent code); if not, the two
+   disagree and that is a bug of lkverify (:class:`~lkverify.errors.InternalError`, exit 3).
 
 The data are read exactly: rational entries and delays as their rationals, a float at its exact
 binary value (:func:`~lkverify.linear.model.parse_delay`), an irrational entry as arb's
@@ -46,6 +49,7 @@ import numpy as np
 from flint import acb, acb_mat, arb, ctx
 
 from ..certify.intervals import enclose, float_down, float_up
+from ..errors import InternalError
 from ..status import Status
 from .model import LinearDelaySystem, parse_delay
 from .spectrum import DEFAULT_NODES, rightmost_roots
@@ -150,7 +154,8 @@ def _balls(system: LinearDelaySystem):
     """A, A_d and the D_j as nested lists of arb balls (exact rationals, enclosures otherwise)."""
     def conv(M):
         return [[arb(0) if e == 0 else enclose(e, prec=None) for e in M.row(i)] for i in range(M.rows)]
-    return conv(system.A), conv(system.Ad), [conv(K) for K in system.kernel if any(e != 0 for e in K)]
+    D = [conv(K) for K in system.kernel]                  # D_j at index j (a zero D_0 keeps its place)
+    return conv(system.A), conv(system.Ad), D if system.has_distributed else []
 
 
 def _kernel_integrals(s: acb, h: arb, E: acb, count: int) -> list:
@@ -282,6 +287,21 @@ def _try_root(system, hq, lam: complex):
     return last
 
 
+#: σ_min(Δ(s)) / max(1, ‖Δ(s)‖) above which the float route says the certified root is not a root
+CROSS_EXAMINATION_TOL = 1e-6
+
+
+def _cross_examine(system, hq, ball) -> None:
+    """The certified root is a root of the float characteristic matrix too (model.py: independent code), or a bug."""
+    s = complex(sum(ball.real) / 2, sum(ball.imag) / 2)
+    M = system.characteristic_matrix(s, float(hq))
+    sv = np.linalg.svd(M, compute_uv=False)
+    if not sv[-1] <= CROSS_EXAMINATION_TOL * max(1.0, sv[0]):
+        raise InternalError(f"instability: the root certified at h = {hq}, s = {ball.enclosure}, is not a root of the "
+                            f"float characteristic matrix (σ_min(Δ) = {sv[-1]:.3g}, ‖Δ‖ = {sv[0]:.3g}): the ball "
+                            f"arithmetic and the model disagree")
+
+
 def refute_stability(system: LinearDelaySystem, h, *, nodes: int = DEFAULT_NODES) -> Instability:
     """"Stable at h" refuted by a characteristic root certified in the open right half-plane, or undecided.
 
@@ -313,6 +333,7 @@ def refute_stability(system: LinearDelaySystem, h, *, nodes: int = DEFAULT_NODES
     for lam in lams:
         ball = _try_root(system, hq, lam)
         if ball is not None and ball.in_rhp:
+            _cross_examine(system, hq, ball)
             note = " (the float inputs taken at their exact binary value)" if system.from_float else ""
             return Instability(hq, Status.FAILED, ball, sp.abscissa,
                                f"unstable at h = {hq}{note}: a characteristic root certified in the open right "

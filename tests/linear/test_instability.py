@@ -122,3 +122,31 @@ def test_cli_stable_delay_is_not_failed(capsys):
                       "--orders", "0", "--h-max", "8")
     statuses = {r["name"]: r["status"] for r in data["results"]}
     assert code == 0 and statuses["stable at h = 1"] == "exact" and "failed" not in statuses.values()
+
+
+def test_a_polynomial_kernel_root_matches_an_independent_quadrature():
+    # ẋ = x − ∫_{t−1}^t (t − s) x(s) ds / 2: f(s) = s − 1 + ½∫_0^1 u e^{−su} du (a zero D_0 keeps its place)
+    f = lambda x: x - 1 + mpmath.quad(lambda u: u * mpmath.e ** (-x * u), [0, 1]) / 2   # noqa: E731
+    s = float(mpmath.findroot(f, 0.8))
+    for kernel in ([[[0]], [["-1/2"]]], [[["1/3"]], [["-1/2"]]]):
+        system = LinearDelaySystem([[1]], kernel=kernel)
+        root = refute_stability(system, 1).root
+        g = (lambda x: f(x) - (1 - mpmath.e ** (-x)) / (3 * x)) if kernel[0] != [[0]] else f
+        ref = float(mpmath.findroot(g, root.centre.real))
+        assert root.real[0] <= ref <= root.real[1]
+    assert abs(refute_stability(LinearDelaySystem([[1]], kernel=[[[0]], [["-1/2"]]]), 1).root.centre.real - s) < 1e-12
+
+
+def test_a_ball_arithmetic_that_disagrees_with_the_model_is_an_internal_error(monkeypatch):
+    from lkverify.errors import InternalError
+    from lkverify.linear import instability
+
+    real = instability._balls
+
+    def shifted(system):          # the kernel's D_1 read as D_0: another function than the model's
+        A, Ad, D = real(system)
+        return A, Ad, [d for d in D if any(e != 0 for row in d for e in row)]
+
+    monkeypatch.setattr(instability, "_balls", shifted)
+    with pytest.raises(InternalError, match="float characteristic matrix"):
+        refute_stability(LinearDelaySystem([[1]], kernel=[[[0]], [["-1/2"]]]), 1)
