@@ -58,8 +58,10 @@ class CertifiedInterval:
         when the interval starts at 0: the search then stops at the first start point).
     lower_check, upper_check : LmiResult or None
     status : Status
-        ``exact``/``certified`` when the reported ends were verified; ``undecided`` when no
-        delay of the interval gave a verified certificate.
+        ``exact``/``certified`` when the reported ends were verified (``certified``, never
+        ``exact``, for a system with float inputs: :mod:`lkverify.status`); ``undecided`` when no
+        delay of the interval gave a verified certificate.  The ends of ``interval`` are only
+        search bounds: the delays reported are lkverify's own decimals, whatever their type.
     solves : int
     seconds : float
     detail : str
