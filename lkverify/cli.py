@@ -108,7 +108,8 @@ def _build_parser() -> argparse.ArgumentParser:
     s.add_argument("--set", dest="sets", action="append", default=[], metavar="NAME=VALUE",
                    help="a parameter value for every run of the example")
     s.add_argument("--history", dest="histories", action="append", default=[], metavar="STATE=VALUE",
-                   help="a constant initial history for a state, e.g. omega=[0.1,0.1,0.1]")
+                   help="an initial history for a state: a constant vector, e.g. omega=[0.1,0.1,0.1], or one in t, "
+                        "e.g. omega=[sin(t)/10,0,0] (an example with an envelope takes constant ones)")
     s.add_argument("--t-end", type=float, default=None, metavar="T", help="final time (default: the example's)")
     s.add_argument("--plot", metavar="FILE.png",
                    help="write the figure (paper style) to this file: PNG, or PDF/SVG by the suffix .pdf/.svg")
