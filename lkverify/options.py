@@ -274,7 +274,8 @@ class Budget:
     Parameters
     ----------
     seconds : float or None, default 60
-        Wall-clock seconds for the whole job; ``None`` for no limit.
+        Wall-clock seconds for the whole job; ``None`` for no limit.  Inside :func:`work_limits`
+        an internal ceiling: no limit (a caller's cap is ``deadline(cap=True)``).
     boxes : int or None, default None
         For branch and bound: the most boxes examined (``None``: the job's default).
 
