@@ -225,7 +225,6 @@ def test_weights_are_integrated_exactly():
 
 @pytest.mark.parametrize("lhs, match", [
     (sympy.Integral(sympy.Integral(x(zeta)[0] ** 2, (zeta, xi, t)), (xi, t - TAUX, t)), "nested"),
-    (memory_integral(x(xi)[0] ** 2), "memory integrals"),
     (x(t + 1)[0], "future"),
     (window_integral(x(xi - 1)[0], TAUX), "shifted"),
     (sympy.Derivative(X, t), "derivative"),

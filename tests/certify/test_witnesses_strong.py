@@ -9,9 +9,11 @@ a witness decides them: ``failed`` (a rechecked witness) or ``undecided``.
 import pytest
 import sympy
 
-from lkverify import Equation, Functional, Parameters, System, Term, Vector, t, window_integral, xi
+from lkverify import (Equation, Functional, Parameters, System, Term, Vector, memory_integral, norm_power, t,
+                      window_integral, xi)
 from lkverify.certify.steps import Region, TermBound, TermwiseBound, norm_measure
-from lkverify.certify.steps.measures import window_integral_measure, window_norm
+from lkverify.certify.steps.measures import sup_norm, window_integral_measure, window_norm
+from lkverify.certify.steps.memory import memory_measure
 from lkverify.certify.steps.rules import Printed
 from lkverify.status import Status
 
@@ -30,6 +32,9 @@ LMAX = 3 + sympy.sqrt(3)
 QY = (y(t).T * M3 * y(t))[0]
 WEIGHTED = window_integral(x(xi).dot(x(xi)) * (2 + xi - t), 1)          # weight 1 (oldest) … 2 (newest)
 HOLDER = window_integral(sympy.sqrt(x(xi).dot(x(xi))) * (xi - t + 1), 1)   # ≤ (∫σ²)^{1/2}·J = J/√3
+Q = memory_measure("Q", x(xi), p=2, kernel=lambda u: sympy.exp(-2 * u))   # ∫_0^t e^{−2(t−ξ)}‖x‖² dξ
+MEMORY = 3 * memory_integral(sympy.exp(-2 * (t - xi)) * norm_power(x(xi), 2))
+WHOLE = Region({sup_norm("m", x(xi), window=sympy.oo): R(1, 10)})        # sup over the whole history
 V_WITH_WINDOW = x(t).dot(x(t)) / 2 + R(1, 10 ** 13) * window_integral(x(xi).dot(x(xi)), 1)
 
 
@@ -52,6 +57,8 @@ FALSE = {   # undecided before, failed now
     "window weight (≥): min g + 10⁻⁶": step(WEIGHTED, (1 + R(1, 10 ** 6)) * I.symbol, [n, I], ">="),
     "V ≤ x²/2, the window term 10⁻¹³∫x² dropped": step(V_WITH_WINDOW, N ** 2 / 2, [n]),
     "Hölder: the constant 0.1 % too small": step(HOLDER, near(1 / sympy.sqrt(3), -R(1, 1732)) * J.symbol, [n, J]),
+    "memory: 3∫e^{−2(t−ξ)}‖x‖² ≤ (3 − 10⁻⁹)Q": step(MEMORY, (3 - R(1, 10 ** 9)) * Q.symbol, [n, Q]),
+    "memory on the region: ≤ 2Q": step(MEMORY, 2 * Q.symbol, [n, Q], region=WHOLE),
 }
 TRUE = {
     "Rayleigh: m = λ_max + 10⁻²⁰": step(QY, near(LMAX, R(1, 10 ** 20)) * NY ** 2, [ny]),
@@ -60,6 +67,7 @@ TRUE = {
     "window weight (≥): min g": step(WEIGHTED, I.symbol, [n, I], ">="),
     "V ≤ x²/2 + 10⁻¹³·I": step(V_WITH_WINDOW, N ** 2 / 2 + R(1, 10 ** 13) * I.symbol, [n, I]),
     "Hölder: the constant 1/√3 (+10⁻¹²)": step(HOLDER, near(1 / sympy.sqrt(3), R(1, 10 ** 12)) * J.symbol, [n, J]),
+    "memory on the region: ≤ 3Q": step(MEMORY, 3 * Q.symbol, [n, Q], region=WHOLE),
 }
 
 
@@ -123,3 +131,10 @@ def test_a_users_budget_cut_says_so(monkeypatch):
     res = TRUE["window weight: max g"].check({}, budget=10)
     assert res.status is Status.UNDECIDED
     assert "the budget was spent before this witness search finished" in res.terms[0].detail
+
+
+def test_the_memory_witness_is_a_history_on_0_t_inside_the_region():
+    w = FALSE["memory on the region: ≤ 2Q"].check({}).terms[0].witness
+    assert w.exact["t"] == "1" and w.exact["window"] == "1"            # t = 1, pieces on [0, 1]
+    assert all(sum(c * c for c in piece) <= 0.01 + 1e-12 for piece in w.history["x"])
+    assert w.measures["Q"] > 0

@@ -87,6 +87,13 @@ value at all c_k = 0 (and the infimum over them).  A constant whose symbol is po
 ``γ(A + B c7)`` is refuted for every γ > 0 and c7 ≥ 0 (:attr:`Witness.violation` then
 encloses the quotient; ``exact["factors"]`` names γ).
 
+A **memory integral** ``∫_c^t κ(t − ξ)F dξ`` (and a memory measure of
+:mod:`~lkverify.certify.steps.memory`, ``∫_0^t κ(t − ξ)‖v‖^p``) is a window over [c, t] once t
+is fixed: the witness time ``time=``, or t = :data:`MEMORY_TIME` = 1 when none is given (a
+bound step holds at every t ≥ 0 for every admissible history, so one time suffices); the
+kernel is integrated exactly over each piece (one antiderivative, reused), and a region bound
+``sup_{ξ ≤ t}‖x(ξ) − c‖`` (window ∞) holds on every piece and point value.
+
 The search builds the exact parametric expression once per piece count, lambdifies it
 (vectorised over points, so a finite-difference gradient costs one call), and runs
 SciPy's L-BFGS-B from ``starts`` random starts (``numpy.random.default_rng(seed)``; one BLAS
@@ -96,13 +103,21 @@ pieces and delayed values along a rotation of the value at t in a random plane (
 unit vectors often the plane through the centre r, the papers' counterexample; for
 frames about a random axis or one of r1, r2, r3), with an angle profile of one or
 several modes (for frames also turning t and the oldest time in opposite senses).  Piece counts are
-tried in order and the first that yields a rechecked witness wins.  Candidates whose
+tried in order and the first that yields a rechecked witness wins.  Then the structured
+starts and grids of :mod:`.witness_seeds` (exact top eigenvectors of quadratic forms,
+histories concentrated at one end of a window on ``("ends", ε)`` grids, power profiles near
+Hölder's equality case on a fine grid); a positive candidate that does not recheck at the
+rounding 1/10⁶ is rechecked at 1/10¹² and 1/10¹⁸.
+
+The work is fixed — ``pieces``, ``starts``, ``maxiter``, ``seeds`` and the seed of the
+random generator — so the result is the same on every machine; a wall clock cuts it only
+when a ``budget`` is given (:func:`find_witness` then says the search was cut).  Candidates whose
 float violation is below about 10⁻¹³ of the size of the terms are rounding noise and
 are not rechecked, so violations that small are not found.
 
 Errors: bad arguments raise :class:`~lkverify.errors.InputError` ("expected / got /
 how to fix").  Claims outside the witness family — unit vectors of dimension ≠ 3,
-nested or merged integrals, memory integrals, states at future times or at shifted ξ
+nested or merged integrals, memory integrals with a searched time, states at future times or at shifted ξ
 under an integral, derivatives of states, region bounds of other forms (for a frame:
 bounds about centres that are not orthonormal) — raise :class:`UnsupportedClaim`, which is both an
 :class:`~lkverify.errors.UnsupportedInput` and an :class:`~lkverify.errors.InputError`
@@ -163,10 +178,16 @@ _RECHECKS = 6
 _PREC = 128
 #: finer roundings tried when a positive candidate does not recheck at 1/10⁶ (violations of 10⁻¹² relative)
 _FINE_DENOMINATORS = (10 ** 12, 10 ** 18)
+#: the kind of a memory measure (lkverify.certify.steps.memory) and the witness time of a memory claim
+MEMORY = "memory_integral"
+MEMORY_TIME = sympy.Integer(1)
+_U = sympy.Symbol("_wu", nonnegative=True)
 #: the default, deterministic work of a search: equal-piece grids, starts per grid, iterations per start
 PIECES = (1, 2, 3, 5)
 STARTS = 24
 MAXITER = 200
+#: the most structured starts per piece grid (lkverify.certify.steps.witness_seeds)
+SEEDS = 12
 
 
 class UnsupportedClaim(UnsupportedInput, InputError):
@@ -850,12 +871,18 @@ class _Problem:
         self.rhs = apply_substitution(_sympify_scalar(rhs, "rhs"), sub)
         self.measures = measures
         self.msyms = {m.symbol: m for m in measures}
+        self._memory_time([e for _, e in self.terms] + [self.rhs], measures)
         # the measures after substitution
         self.mdata = {}
+        self.kernels = {}
         for m in measures:
             vec = sympy.ImmutableMatrix(apply_substitution(m.vector, sub))
-            window = _number(apply_substitution(m.window, sub), f"measure {m.name}: window") \
-                if m.kind != "norm" else sympy.Integer(0)
+            if m.kind == MEMORY:         # ∫_0^t κ(t − ξ)‖v‖^p: the history on [0, t] at the witness time
+                window = self.time
+                self.kernels[m.name] = sympy.Lambda(_U, apply_substitution(m.kernel(_U), sub))
+            else:
+                window = _number(apply_substitution(m.window, sub), f"measure {m.name}: window") \
+                    if m.kind != "norm" else sympy.Integer(0)
             power = _number(apply_substitution(m.power, sub), f"measure {m.name}: power")
             if vec.free_symbols - {t, xi}:
                 extra = sorted(map(str, vec.free_symbols - {t, xi}))
@@ -893,7 +920,7 @@ class _Problem:
             for st in states:
                 if m.kind in ("norm", "sup"):
                     self.points.setdefault((st, sympy.Integer(0)), set())
-                if m.kind in ("window_norm", "window_integral"):
+                if m.kind in ("window_norm", "window_integral", MEMORY):
                     self._history(st)
         used = {s for s, _ in self.points} | set(self.history_states)
         self.states = []
@@ -907,7 +934,7 @@ class _Problem:
                                        f"{st.dim}; other spheres are not supported yet")
         # windows
         hs = [i.h1 for i in self.integrals.values()]
-        hs += [self.mdata[m.name][1] for m in measures if m.kind in ("window_norm", "window_integral")]
+        hs += [self.mdata[m.name][1] for m in measures if m.kind in ("window_norm", "window_integral", MEMORY)]
         self.H = max(hs, key=float) if hs and self.history_states else sympy.Integer(0)
         self.constraints = self._constraints(region)
         for st in self.states:
@@ -920,7 +947,7 @@ class _Problem:
             if m.kind != "norm":
                 breaks.add(self.mdata[m.name][1])
         for c in self.constraints:
-            if c.kind == "sup":
+            if c.kind == "sup" and c.window != sympy.oo:
                 breaks.add(c.window)
         self.breaks = {b for b in breaks if not _lt(self.H, b)}
         #: the states of rotation starts: those with a history or with delayed values
@@ -928,6 +955,28 @@ class _Problem:
             st for st in self.states if st not in self.history_states and any(s2 is st and c != 0 for s2, c in self.points)]
 
     # -- scanning ---------------------------------------------------------------------------------
+    def _memory_time(self, exprs, measures) -> None:
+        """Fix the witness time t when the claim has memory integrals ∫_0^t (default :data:`MEMORY_TIME`).
+
+        A bound step holds at every t ≥ 0 for every admissible history, so a violation at one time
+        refutes it; the memory integral is then a finite sum over the pieces of [0, t].
+        """
+        def memory(node):
+            if len(node.limits) != 1:
+                return False
+            var, lo, hi = node.limits[0]
+            return hi == t and not sympy.sympify(lo).has(t) and not sympy.sympify(lo).has(var)
+
+        if not (any(m.kind == MEMORY for m in measures)
+                or any(memory(node) for e in exprs for node in outer_integrals(e))):
+            return
+        if self.time is None and self.time_range is not None:
+            raise UnsupportedClaim("a memory integral ∫_0^t with a searched witness time: give one time (time=1)")
+        if self.time is None:
+            self.time = MEMORY_TIME
+        if self.time.is_negative:
+            raise InputError(f"time: expected t ≥ 0 for a memory integral ∫_0^t, got {self.time}")
+
     def _state(self, atom, where):
         if atom.func not in self.funcs:
             raise InputError(f"{where}: {atom} is not a state of the system and has no value; give the "
@@ -976,13 +1025,15 @@ class _Problem:
             raise UnsupportedClaim(f"{where}: expected single window integrals, got an integral inside the integrand "
                                    f"of {_short(node)}; not supported yet")
         h1, h2 = sympy.expand(t - lo), sympy.expand(t - hi)
+        if self.time is not None and not sympy.sympify(lo).has(t):      # a memory integral ∫_0^t at the time
+            h1 = sympy.expand(self.time - lo)
         for h in (h1, h2):
             if h.has(t) or h.has(var) or not h.is_number:
                 if h.free_symbols - {t, var}:
                     raise InputError(f"{where}: the window of {_short(node)} has no value "
                                      f"({sorted(map(str, h.free_symbols - {t, var}))}); give it a value")
                 raise UnsupportedClaim(f"{where}: expected a window integral over [t − h, t − h'] with constant "
-                                       f"h ≥ h' ≥ 0, got limits ({lo}, {hi}); memory integrals are not supported")
+                                       f"h ≥ h' ≥ 0 or a memory integral over [c, t], got limits ({lo}, {hi})")
         if h2.is_negative or _lt(h1, h2):
             raise UnsupportedClaim(f"{where}: expected a window integral over [t − h, t − h'] with h ≥ h' ≥ 0, "
                                    f"got limits ({lo}, {hi})")
@@ -1043,7 +1094,9 @@ class _Problem:
                                        f"{m.text}; other region shapes are not supported yet")
             window = None
             if m.kind == "sup":
-                window = _number(apply_substitution(m.window, self.sub), f"region bound on {m.text}: window")
+                window = apply_substitution(sympy.sympify(m.window), self.sub)
+                if window != sympy.oo:      # oo: the sup over the whole history (a memory region)
+                    window = _number(window, f"region bound on {m.text}: window")
             out.append(_Constraint(st, m.kind, window, center, bound, index))
         return out
 
@@ -1268,6 +1321,13 @@ class _Model:
             if self.problem.time is not None:
                 F = F.xreplace({t: self.problem.time})
             if I.degree is None:
+                G = self._antiderivative(I)
+                if G is not None:        # one antiderivative for every piece (and every grid)
+                    dummies, s_, g = G
+                    rep = {d: (self.piece_slot[(self.problem.funcs[a.func][0], k)].z[self.problem.funcs[a.func][1]]
+                               if a.args[0] == var else self.point_map.get(a, a)) for a, d in dummies.items()}
+                    total.append((g.xreplace({s_: hi}) - g.xreplace({s_: lo})).xreplace(rep))
+                    continue
                 val = sympy.integrate(F.xreplace({var: t - sigma}), (sigma, lo, hi))
                 if val.has(sympy.Integral):
                     raise UnsupportedClaim(f"{where}: the weight of {_short(I.node)} could not be integrated "
@@ -1279,6 +1339,20 @@ class _Model:
             total.append(length * sympy.Add(*[w * F.xreplace({var: t - (lo + length * x)})
                                               for x, w in zip(nodes, weights)]))
         return sympy.Add(*total)
+
+    def _antiderivative(self, I: _Integral):
+        """``(atom → dummy, σ, G)`` with G(σ) an antiderivative of the integrand at ξ = t − σ in dummies for the
+        states (cached on the problem), or None when SymPy finds none."""
+        cache = self.problem.__dict__.setdefault("_antiderivatives", {})
+        if I.node not in cache:
+            dummies = {a: sympy.Dummy(real=True) for a in I.inner.atoms(AppliedUndef)}
+            sigma = sympy.Dummy("sigma")
+            F = I.inner.xreplace(dummies)
+            if self.problem.time is not None:
+                F = F.xreplace({t: self.problem.time})
+            g = sympy.integrate(F.xreplace({I.var: t - sigma}), sigma)
+            cache[I.node] = None if g.has(sympy.Integral) or g.has(sympy.Piecewise) else (dummies, sigma, g)
+        return cache[I.node]
 
     def _time_value(self):
         """What t becomes: the given time, the time slot's symbol, or 0 (autonomous claims)."""
@@ -1331,9 +1405,15 @@ class _Model:
         total = []
         for k, lo, hi in self._pieces_in(window, 0):
             v = vec.xreplace(self._piece_map(xs, k))
-            total.append((hi - lo) * sympy.Pow(sympy.Add(*[c ** 2 for c in v]), power / 2))
+            weight = hi - lo
+            if m.kind == MEMORY:     # ∫ κ(u) du over the piece's offsets u = t − ξ ∈ [lo, hi], exactly
+                weight = sympy.integrate(self.problem.kernels[m.name](_U), (_U, lo, hi))
+                if weight.has(sympy.Integral):
+                    raise UnsupportedClaim(f"measure {m.name}: its kernel could not be integrated exactly over a "
+                                           f"piece")
+            total.append(weight * sympy.Pow(sympy.Add(*[c ** 2 for c in v]), power / 2))
         integral = sympy.Add(*total)
-        return integral if m.kind == "window_integral" else sympy.Pow(integral, 1 / power)
+        return integral if m.kind in ("window_integral", MEMORY) else sympy.Pow(integral, 1 / power)
 
     # -- numeric ------------------------------------------------------------------------------
     def zvalues(self, P: np.ndarray) -> list:
@@ -1786,10 +1866,10 @@ def _validated(pieces, starts, seed, maxiter) -> tuple:
 @_single_threaded
 def find_witness(lhs, rhs, *, system, values, measures, region=None, exists=(), nonnegative=(), pieces=PIECES,
                  starts=STARTS, budget=None, seed=0, time=None, maxiter=MAXITER, structured=True,
-                 seeds=None) -> SearchOutcome:
+                 seeds=SEEDS) -> SearchOutcome:
     """:func:`search_witness`, telling also whether the search ran to its end (:class:`SearchOutcome`).
 
-    ``seeds`` caps the structured starts per grid (None: all); with ``structured`` the end
+    ``seeds`` caps the structured starts per grid (default :data:`SEEDS`; None: all); with ``structured`` the end
     grids :data:`~.witness_seeds.END_GRIDS` are added unless ``pieces`` names an end grid.
 
     Examples
