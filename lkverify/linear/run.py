@@ -253,7 +253,9 @@ def _verdict(results, iv) -> str:
     row = next((r for r in results if r.name.endswith("(certified)")), None)
     if row is not None and not row.value["points_only"]:
         def ends(kind):
-            return ", ".join(f"({a:.7g}, {b:.7g})" for a, b in row.value[kind]) or "none"
+            got = row.value[kind]
+            shown = ", ".join(f"({a:.7g}, {b:.7g})" for a, b in got[:3]) or "none"
+            return shown + (f" and {len(got) - 3} more up to {got[-1][1]:.7g}" if len(got) > 3 else "")
         text += f"; proved stable on {ends('stable')} and unstable on {ends('unstable')} ({row.status.value})"
     return text
 
