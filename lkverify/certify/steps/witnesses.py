@@ -1288,8 +1288,11 @@ class _Model:
         zsyms = [z for slot in self.slots for z in slot.z]
         self.zsyms = zsyms
         self._f = sympy.lambdify(zsyms, outs, modules="numpy", cse=True)
-        size = sympy.Add(*[sympy.Abs(e.xreplace(zero)) for _, e in self.terms_z]) + sympy.Abs(self.rhs_z.xreplace(zero))
-        self._size = sympy.lambdify(zsyms, size, modules="numpy", cse=True)
+        # the sides' sizes Σ|term| + |rhs|, the absolute values taken numerically (SymPy's Abs of a large
+        # expression costs seconds deciding its sign)
+        parts = sympy.lambdify(zsyms, [e.xreplace(zero) for _, e in self.terms_z] + [self.rhs_z.xreplace(zero)],
+                               modules="numpy", cse=True)
+        self._size = lambda *z: sum(np.abs(np.asarray(v, dtype=float)) for v in parts(*z))
         self.scale = 1.0        # typical size of the objective (set by :meth:`calibrate`)
         self.tol = 1e-12        # improvements below this (in units of scale) are rounding noise
 
@@ -1407,7 +1410,10 @@ class _Model:
             v = vec.xreplace(self._piece_map(xs, k))
             weight = hi - lo
             if m.kind == MEMORY:     # ∫ κ(u) du over the piece's offsets u = t − ξ ∈ [lo, hi], exactly
-                weight = sympy.integrate(self.problem.kernels[m.name](_U), (_U, lo, hi))
+                try:
+                    weight = sympy.integrate(self.problem.kernels[m.name](_U), (_U, lo, hi))
+                except RecursionError:  # SymPy on a kernel that is itself a tail integral (∫_u^∞ …)
+                    weight = sympy.Integral(self.problem.kernels[m.name](_U), (_U, lo, hi))
                 if weight.has(sympy.Integral):
                     raise UnsupportedClaim(f"measure {m.name}: its kernel could not be integrated exactly over a "
                                            f"piece")
