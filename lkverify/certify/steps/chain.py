@@ -13,9 +13,14 @@ bound in measures and constants, and the rule that justifies it
    remainder; a template constant is the certified supremum (its value replaces the
    constant's name in the bounds);
 3. a term bound that is not proved is searched for an adversarial witness
-   (:func:`lkverify.certify.steps.witnesses.search_witness`): found and rechecked in
+   (:func:`lkverify.certify.steps.witnesses.find_witness`): found and rechecked in
    interval arithmetic → ``failed`` with the witness; otherwise ``undecided`` with the
-   failing side condition;
+   failing side condition.  The search does a fixed amount of work (the same result on
+   every machine); only the budget passed to :meth:`TermwiseBound.check` cuts it, and then
+   the term says "the budget was spent before this witness search finished".  A term
+   bound that *is* proved is cross-examined by a cheap search (:data:`CROSS_EXAMINATION`):
+   a rechecked witness against it is a bug of the rule and raises
+   :class:`~lkverify.errors.RuleSoundnessError` (exit 3), never an ``exact`` row;
 4. the bounds add up to rhs: rhs − Σ bounds (upper) is 0 or structurally ≥ 0 on the
    region.
 
