@@ -178,7 +178,13 @@ class Report:
 
     @property
     def exit_code(self) -> int:
-        return 0 if self.holds else 1
+        """0 when every result holds and, for a theorem, its chain reaches the conclusion; else 1.
+
+        A theorem that is not established exits 1 even when every result it has holds (a
+        missing link is not a result)."""
+        conclusion = [link for link in (self.chain or ()) if link.name == "conclusion"]
+        not_established = bool(conclusion) and (conclusion[-1].status is None or not conclusion[-1].status.is_proof)
+        return 0 if self.holds and not not_established else 1
 
     def to_json(self) -> dict:
         out = {"item": self.item, "parameters": jsonable(self.parameters),

@@ -879,7 +879,7 @@ class _Problem:
             vec = sympy.ImmutableMatrix(apply_substitution(m.vector, sub))
             if m.kind == MEMORY:         # ∫_0^t κ(t − ξ)‖v‖^p: the history on [0, t] at the witness time
                 window = self.time
-                self.kernels[m.name] = sympy.Lambda(_U, apply_substitution(m.kernel(_U), sub))
+                self.kernels[m.name] = sympy.Lambda(_U, _evaluated(apply_substitution(m.kernel(_U), sub)))
             else:
                 window = _number(apply_substitution(m.window, sub), f"measure {m.name}: window") \
                     if m.kind != "norm" else sympy.Integer(0)
@@ -1205,6 +1205,23 @@ class _Problem:
         return out
 
 
+def _evaluated(expr):
+    """``expr`` with its integrals free of states (a kernel's tail ∫_u^∞ e^{−2ζ}dζ, in u or in t − ξ) evaluated
+    by SymPy where it finds a closed form; the others are kept."""
+    expr = sympy.sympify(expr)
+    rep = {}
+    for node in expr.atoms(sympy.Integral):
+        if node.atoms(AppliedUndef):
+            continue
+        try:
+            done = node.doit()
+        except RecursionError:
+            continue
+        if not done.has(sympy.Integral):
+            rep[node] = done
+    return expr.xreplace(rep) if rep else expr
+
+
 def _short(x, n=80) -> str:
     s = str(x)
     return s if len(s) <= n else s[: n - 1] + "…"
@@ -1343,6 +1360,21 @@ class _Model:
                                               for x, w in zip(nodes, weights)]))
         return sympy.Add(*total)
 
+    def _kernel_mass(self, name, lo, hi):
+        """∫_lo^hi κ(u) du exactly, from one antiderivative of the kernel (cached on the problem)."""
+        cache = self.problem.__dict__.setdefault("_kernel_antiderivatives", {})
+        kern = self.problem.kernels[name](_U)
+        if name not in cache:
+            try:
+                K = sympy.integrate(kern, _U)
+            except RecursionError:  # SymPy's meijerint on an unusual kernel
+                K = None
+            cache[name] = None if K is None or K.has(sympy.Integral) or K.has(sympy.Piecewise) else K
+        K = cache[name]
+        if K is None:
+            return sympy.Integral(kern, (_U, lo, hi))
+        return K.subs(_U, hi) - K.subs(_U, lo)
+
     def _antiderivative(self, I: _Integral):
         """``(atom → dummy, σ, G)`` with G(σ) an antiderivative of the integrand at ξ = t − σ in dummies for the
         states (cached on the problem), or None when SymPy finds none."""
@@ -1350,10 +1382,13 @@ class _Model:
         if I.node not in cache:
             dummies = {a: sympy.Dummy(real=True) for a in I.inner.atoms(AppliedUndef)}
             sigma = sympy.Dummy("sigma")
-            F = I.inner.xreplace(dummies)
+            F = _evaluated(I.inner.xreplace(dummies))
             if self.problem.time is not None:
                 F = F.xreplace({t: self.problem.time})
-            g = sympy.integrate(F.xreplace({I.var: t - sigma}), sigma)
+            try:
+                g = sympy.integrate(F.xreplace({I.var: t - sigma}), sigma)
+            except RecursionError:  # SymPy's meijerint on an unusual integrand: summed piece by piece instead
+                g = sympy.Integral(F, sigma)
             cache[I.node] = None if g.has(sympy.Integral) or g.has(sympy.Piecewise) else (dummies, sigma, g)
         return cache[I.node]
 
@@ -1410,10 +1445,7 @@ class _Model:
             v = vec.xreplace(self._piece_map(xs, k))
             weight = hi - lo
             if m.kind == MEMORY:     # ∫ κ(u) du over the piece's offsets u = t − ξ ∈ [lo, hi], exactly
-                try:
-                    weight = sympy.integrate(self.problem.kernels[m.name](_U), (_U, lo, hi))
-                except RecursionError:  # SymPy on a kernel that is itself a tail integral (∫_u^∞ …)
-                    weight = sympy.Integral(self.problem.kernels[m.name](_U), (_U, lo, hi))
+                weight = self._kernel_mass(m.name, lo, hi)
                 if weight.has(sympy.Integral):
                     raise UnsupportedClaim(f"measure {m.name}: its kernel could not be integrated exactly over a "
                                            f"piece")
