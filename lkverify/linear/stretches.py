@@ -122,7 +122,7 @@ def _phase(zb: acb) -> arb:
 def _delays(phi: arb, omega: arb, h_max: float) -> list:
     """The balls (−φ + 2πk)/ω, k ≥ 0, that may meet (0, h_max]."""
     out = []
-    k_max = math.ceil((h_max * float(omega.upper()) + abs(float(phi.mid())) + 1) / (2 * math.pi)) + 1
+    k_max = math.ceil((Fraction(h_max) * upper_fraction(omega) + upper_fraction(abs(phi)) + 1) / Fraction(6)) + 1
     for k in range(k_max + 1):
         h = (-phi + 2 * arb.pi() * k) / omega
         if h.upper() > 0 and h.lower() <= h_max:
@@ -245,6 +245,13 @@ def certify_stretches(system: LinearDelaySystem, h_max: float, *, estimated=(), 
     -------
     tuple of CertifiedStretch
         In increasing h.
+
+    Examples
+    --------
+    >>> from lkverify.linear.model import LinearDelaySystem
+    >>> sys_ = LinearDelaySystem(A=[[0]], Ad=[[-1]])          # x' = −x(t − h): stable iff h < π/2
+    >>> [s.kind for s in certify_stretches(sys_, 2)]
+    ['stable', 'unstable']
     """
     enc, how = crossing_enclosures(system, h_max)
     hm = Fraction(h_max)
