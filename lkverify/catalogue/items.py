@@ -14,8 +14,8 @@ A proof module declares items; ``lkverify check`` runs them.
 >>> report = th.run({"k": "2"})
 >>> [(r.name, r.status.value) for r in report.results]
 [('k > 0', 'exact'), ('Vdot', 'exact')]
->>> report.exit_code
-0
+>>> report.exit_code       # every result holds, but no bound step: the theorem is not established
+1
 """
 
 from __future__ import annotations
