@@ -102,9 +102,9 @@ class IdentityResult:
     ...                    [Term(1 - s(t)[2] ** 2, text="1 − s_z²")], name="(7)", states=[s],
     ...                    constraints=lambda times: [p for u in times for p in s.constraint_polynomials(u)])
     >>> r.holds, r.numeric_points, r.differences
-    (True, 3, ())
+    (True, 1, ())
     >>> print(r.as_text())
-    (7): exact — the difference reduces to 0 modulo the constraints; checked numerically at 3 random witnesses first
+    (7): exact — the difference reduces to 0 modulo the constraints; checked numerically at 1 random witness first
       ✓ confirmed: printed [s_x² + s_y²] = derived [1 − s_z²]
     """
 
@@ -216,19 +216,27 @@ def check_identity(claimed: Sequence[Term], reference: Sequence[Term], *, name: 
     confirmed = ()
     try:
         with deadline.enforced():
-            # 1. numeric witnesses (appended to ``witnesses`` one by one, so a budget cut keeps them)
-            worst = _numeric_witnesses(claimed, reference, states, parameters, values, rng, points,
+            # 1. one numeric witness first (a grossly wrong claim is refuted before the exact reduction;
+            #    witnesses are appended one by one, so a budget cut keeps them)
+            worst = _numeric_witnesses(claimed, reference, states, parameters, values, rng, min(points, 1),
                                        deadline, witnesses)
-            witness = worst[1] if worst else None
-            refuted = worst is not None and worst[0] > REFUTE_TOL
             # 2. exact normal forms (also needed for the term-by-term report)
             canon = Canonicalizer(constraints, deadline=deadline)
             nf = canon.normal_forms([term.expr for term in all_terms])
             total = sum(nf.polys[: len(claimed)], nf.ring.zero) - sum(nf.polys[len(claimed):], nf.ring.zero)
             exact_zero = total == 0
+            # 3. the other witnesses only where the exact reduction did not prove the identity (the same
+            #    random stream: the witnesses are those of an all-numeric-first check)
+            if not exact_zero and points > 1:
+                more = _numeric_witnesses(claimed, reference, states, parameters, values, rng, points - 1,
+                                          deadline, witnesses)
+                if worst is None or (more is not None and more[0] > worst[0]):
+                    worst = more
+            witness = worst[1] if worst else None
+            refuted = worst is not None and worst[0] > REFUTE_TOL
             differences = () if exact_zero else _term_report(claimed, reference, nf, witness)
             confirmed = _confirmed_groups(claimed, reference, nf)
-            # 3. a nonzero residue is evaluated by itself (no cancellation against the large terms)
+            # 4. a nonzero residue is evaluated by itself (no cancellation against the large terms)
             if not exact_zero:
                 residue_check = _residue_at_witnesses(nf, total, witnesses, deadline)
                 if residue_check.refutes:
@@ -239,7 +247,7 @@ def check_identity(claimed: Sequence[Term], reference: Sequence[Term], *, name: 
                               witness=w0.describe(states) if w0 else None,
                               numeric_points=len(witnesses), seconds=time.monotonic() - start)
     result = _verdict(name, exact_zero, refuted, worst, residue_check, differences,
-                      witness.describe(states) if witness else None, points, time.monotonic() - start)
+                      witness.describe(states) if witness else None, len(witnesses), time.monotonic() - start)
     return dataclasses.replace(result, confirmed=confirmed)
 
 
@@ -268,7 +276,7 @@ def _verdict(name, exact_zero, refuted, worst, rc, differences, wjson, points, s
                                        f"{worst[0]:.2g}; the exact proof stands, the quadrature was inaccurate)")
         return IdentityResult(name, Status.EXACT,
                               f"the difference reduces to 0 modulo the constraints; checked numerically at "
-                              f"{points} random witnesses first{note}",
+                              f"{points} random witness{'' if points == 1 else 'es'} first{note}",
                               (), wjson, wdiff, points, seconds)
     if rc.refutes:
         return IdentityResult(name, Status.FAILED,
