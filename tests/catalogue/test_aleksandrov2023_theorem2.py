@@ -170,6 +170,7 @@ def _instance_values():
     return {k: v for k, v in dec.P2.resolve({}).items() if k in keep}
 
 
+@pytest.mark.slow
 def test_mutated_structured_Vdot_is_refuted_at_the_instance():  # the key term −(∂V2/∂y)ᵀB⁻¹(Q+τD) with its sign flipped
     vals = _instance_values()
     assert _mutated_derivation(3, -1).check(dec.P2.substitution(vals), values=vals).status is Status.FAILED
@@ -200,6 +201,7 @@ def test_structured_Vdot_written_differently_holds_at_the_instance():
     assert claim.check(dec.P2.substitution(vals), values=vals).status is Status.EXACT
 
 
+@pytest.mark.slow
 def test_order_condition_derived_from_the_printed_estimate_agrees_with_the_print():
     assert dec.derived_order_condition(2, 2, 3).status is Status.EXACT
     halves = [sympy.Rational(k, 2) for k in range(4, 11)]

@@ -50,6 +50,7 @@ def test_the_chain_holds_at_the_instance():
     assert all(sympy.Rational(v) > 0 for v in _values()[1].values())
 
 
+@pytest.mark.slow
 def test_the_upper_bound_has_the_printed_form():
     # the paper: V ≤ c8‖x‖^ν1 + c9‖y‖^ν2 + c7τ‖y‖^{ν2−1}∫‖y‖^μ + (α1+β1τ)∫‖x‖^ν1 + (α2+β2τ)∫‖y‖^{ν2+μ−1}
     rhs = sympy.expand(_checked()["upper"][1].rhs)
@@ -60,6 +61,7 @@ def test_the_upper_bound_has_the_printed_form():
     assert rhs.coeff(ch.Ix) == a1 + b1 * tau
 
 
+@pytest.mark.slow
 def test_W_has_the_printed_negative_terms():
     # the paper's conclusion: V̇ ≤ −½(m14‖x‖^ν1 + m24‖y‖^{ν2+μ−1} + β1∫‖x‖^ν1 + β2∫‖y‖^{ν2+μ−1})
     W = sympy.Poly(sympy.expand(_checked()["vdot"][1].rhs), ch.wx, ch.ey, ch.Ix, ch.Iy)
@@ -81,6 +83,7 @@ def test_the_printed_final_estimates_hold_at_the_choices():
     assert any(c > 0 for c in sympy.Poly(full, *[m.symbol for m in ch.MEASURES]).coeffs())
 
 
+@pytest.mark.slow
 def test_the_chain_holds_at_another_instance_and_other_functional_matrices():
     over = {"g": "1/4", "d2": "3/2", "S2": "diag(2,1)"}  # another circulatory part, delay term and V2
     steps = _checked(**over)
@@ -113,6 +116,7 @@ def test_a_flipped_sign_is_refuted_by_a_witness():
     assert bad.status is Status.FAILED and "refuted" in bad.detail, bad.detail
 
 
+@pytest.mark.slow
 def test_a_region_too_large_fails_the_sign_test():
     vals, _ = _values(delta="1/2")
     steps = {s.role: (s, s.check(vals, search=False)) for s in ch.steps}
@@ -134,6 +138,7 @@ def test_a_true_bound_written_differently_holds():
     assert same.check(_values()[0], search=False).status.is_proof
 
 
+@pytest.mark.slow
 def test_when_8_fails_the_hypothesis_and_the_chain_fail():
     # τ = 1/4: k1 + τd1 < 0, (8) has an escaping ray; the key term −(∂V2/∂y)ᵀB⁻¹(Q + τD) is then not negative
     sub = dec.P2.substitution(dec.P2.resolve({"tau": "1/4"}))

@@ -26,9 +26,8 @@ def _replace(label, term):
     return [term if x.text == label else x for x in derivation.terms]
 
 
-@pytest.mark.parametrize("mutation", [pytest.param("flipped Xi sign", marks=pytest.mark.slow),
-                                      pytest.param("Xi without the kernel", marks=pytest.mark.slow),
-                                      "integral torque dropped"])
+@pytest.mark.slow  # 13–30 s each; the default run refutes mutated V̇ claims in tests/symbolic
+@pytest.mark.parametrize("mutation", ["flipped Xi sign", "Xi without the kernel", "integral torque dropped"])
 def test_mutated_vdot_is_refuted(mutation):
     if mutation == "flipped Xi sign":
         old = next(x for x in derivation.terms if x.text == "−f^ν LᵀD⁻¹ΞL")
@@ -37,13 +36,13 @@ def test_mutated_vdot_is_refuted(mutation):
         terms = _replace("−f^ν LᵀD⁻¹ΞL", Term(-beta * f(t) ** nu * quad(L(t), D_inv), text="−βf^ν LᵀD⁻¹L"))
     else:
         terms = [x for x in derivation.terms if x.text != "−γωᵀ∫f^ν(ξ)G(t−ξ)L(ξ)dξ"]
-    res = _with(terms).check({}, values={}, budget=300)
+    res = _with(terms).check({}, values={}, budget=None)
     assert res.status is Status.FAILED, res.as_text()
 
 
 @pytest.mark.slow  # about 50 s on a loaded machine: the whole chain; V̇ exact and its mutations refuted run by default
 def test_theorem2_states_the_derivation_and_is_established_by_its_chain():
-    rep = theorem2.run({}, budget=300)
+    rep = theorem2.run({}, budget=None)
     vdot = next(r for r in rep.results if r.name == "Vdot_structured")
     assert vdot.status is Status.EXACT  # g left symbolic at the defaults: for every kernel
     assert rep.verdict.startswith("established"), rep.verdict  # the chain of theorem2_chain

@@ -70,6 +70,7 @@ def test_the_chain_is_proved_and_concludes(values):
 
 
 # -- mutations: refused ---------------------------------------------------------------------------
+@pytest.mark.slow
 def test_wrong_c11_is_refused(values):
     label = "−f^ν LᵀD⁻¹ΞL"
     (tb,) = [b for b in VDOT.bounds if b.terms == (label,)]
@@ -78,6 +79,7 @@ def test_wrong_c11_is_refused(values):
     assert not res.status.is_proof and "not the rule's" in res.terms[0].detail
 
 
+@pytest.mark.slow
 def test_flipped_sign_is_refused(values):
     label = "μ∫_0^∞‖G‖dζ W(t)"
     flipped = _with_bound(VDOT, label, -mu * sympy.Rational(1, 2) * (e1**Pw + e2**Pw),
@@ -85,6 +87,7 @@ def test_flipped_sign_is_refused(values):
     assert _one(VDOT, label, bound=flipped).check(values).status is not Status.EXACT
 
 
+@pytest.mark.slow
 def test_wrong_memory_constant_is_refused(values):
     label = "−μ∫‖G(t−ξ)‖W(ξ)dξ"
     twice = _with_bound(VDOT, label, -2 * mu * (J1.symbol + J2.symbol))
@@ -158,7 +161,7 @@ def test_remark3_point_is_established():
     # the chain with |β| establishes the theorem
     from lkverify.proofs.aleksandrov2026.theorem2 import theorem2
 
-    rep = theorem2.run({"beta": "-1", "g": "3*exp(-2*zeta)"}, budget=300)
+    rep = theorem2.run({"beta": "-1", "g": "3*exp(-2*zeta)"}, budget=None)
     assert rep.verdict.startswith("established"), rep.verdict
 
 

@@ -188,6 +188,7 @@ def test_theorem2_with_other_kernels():
     assert rep.verdict.startswith("failed: hypotheses")
 
 
+@pytest.mark.slow
 def test_theorem2_float_kernel_is_never_exact():
     _, _, res = _theorem2_run({"g": sympy.exp(-0.5 * zeta)})
     assert res["Assumption 1"].status is Status.CERTIFIED and "floating-point" in res["Assumption 1"].detail

@@ -37,6 +37,7 @@ def test_paper000_theorem2_printed_step_is_proved_for_beta_positive():
     assert res.constants["c7"] >= 1.0 and res.constants["c7"] <= 1.01  # sup of f^ν(e1 + e2)/(e1^{1.6} + e2^{1.6}) = 1 at e1 = e2
 
 
+@pytest.mark.slow
 def test_paper001_theorem1_h_dot_refuted_for_decreasing_h_and_corrected():
     v = P001.resolve({}, use_defaults=True)  # h = (1 + t)^{−7/8}
     w = _refuted(p001.check(v))
@@ -93,7 +94,7 @@ def test_paper000_theorem1_c5_to_c10_bound_is_proved_on_the_exact_vdot():
     from lkverify.proofs.aleksandrov2026.theorem1_bound import BOUNDS, d1, d2, derivation, mu, printed_bound
 
     v = P000.resolve({}, use_defaults=True)
-    assert derivation.check(P000.substitution(v), values=v, budget=120).status is Status.EXACT
+    assert derivation.check(P000.substitution(v), values=v, budget=None).status is Status.EXACT
     res = printed_bound.check(v, search=False)
     assert res.status is Status.CERTIFIED, res.detail
     assert set(res.constants) == {"c8", "c10p"}

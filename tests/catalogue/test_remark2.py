@@ -4,6 +4,7 @@ energy for β > 1; mutated claims refuted."""
 import dataclasses
 import math
 
+import pytest
 import sympy
 
 from lkverify import Status, Term, dot, t
@@ -35,6 +36,7 @@ def test_the_report_certifies_the_limit_energy_bound_and_compares_it_with_the_si
     assert all(r.status.is_proof for r in rep.results if r.kind == "bound")
 
 
+@pytest.mark.slow
 def test_another_integrable_damping_gets_its_own_constant():
     rep = remark2.run({"h": "(1+t)**(-2)"})
     r = next(r for r in rep.results if r.name == "c_tilde (h = (t + 1)**(-2))")

@@ -113,7 +113,7 @@ def test_mutated_conditions_fail(st):
 @pytest.mark.parametrize("st", [
     Statement(2, "Fig. 2 converges", behaviour="converges"),
     Statement(6, "Fig. 6 does not converge", behaviour="does not converge"),
-    Statement(3, "Fig. 3 does not converge", behaviour="does not converge"),
+    pytest.param(Statement(3, "Fig. 3 does not converge", behaviour="does not converge"), marks=pytest.mark.slow),
     Statement(1, "Fig. 1 does not converge", behaviour="does not converge"),
 ], ids=lambda st: st.quote)
 def test_mutated_behaviour_fails(st):
@@ -128,7 +128,8 @@ def test_mutated_behaviour_fails(st):
     (Statement(7, "(13) fails at the Fig. 7 gains", condition=C13, says=False), Status.EXACT),
     (Statement(6, "μ − 1 > 0", condition=mu - 1 > 0), Status.EXACT),
     (Statement(4, "Fig. 4 keeps oscillating", behaviour="does not converge"), Status.SIMULATED),
-    (Statement(5, "the axis of Fig. 5 is stabilised", behaviour="converges"), Status.SIMULATED),
+    pytest.param(Statement(5, "the axis of Fig. 5 is stabilised", behaviour="converges"), Status.SIMULATED,
+                 marks=pytest.mark.slow),
 ], ids=lambda x: getattr(x, "quote", str(x)))
 def test_true_statements_written_differently_are_accepted(st, status):
     assert evaluate(st).status is status

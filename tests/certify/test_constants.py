@@ -147,7 +147,7 @@ def test_theorem3_constants_at_the_fig3_and_fig5_gains(gains):
     (item,) = find_items("aleksandrov2023.theorem3")
     P = item.parameters
     values = P.resolve(gains, use_defaults=True)
-    report, extra = item.constants.run(item.qualified_name, values, {}, budget=300)
+    report, extra = item.constants.run(item.qualified_name, values, {}, budget=None)
     by = {r.name: r for r in report.results}
     assert by["delta_tilde"].status.value == "certified" and by["delta_tilde"].value["value"] > 0
     assert by["c_tilde"].status.value == "certified"

@@ -87,6 +87,7 @@ def sums(witness):
 
 # -- 1. true bounds are not refuted ------------------------------------------------------------
 
+@pytest.mark.slow
 def test_cauchy_schwarz_bound_is_not_refuted():
     # |λbωᵀJ| ≤ λ|b|‖ω‖∫‖s − r‖^μ since ‖‖s−r‖^{μ−1} s×r‖ ≤ ‖s − r‖^μ
     assert search([LAMBDA_J], lam * abs(b) * w * I) is None
@@ -429,6 +430,7 @@ def test_frame_constraints_are_used():
     assert_exact_frame(wit, "s1,s2,s3(t)")
 
 
+@pytest.mark.slow
 def test_delayed_frame_values_are_rotations_of_their_own():
     # ‖L(t) − L(t − τ)‖ ≤ ‖L(t)‖ + ‖L(t − τ)‖ ≤ 2(m1 + m2); the factor 2 dropped fails (±θ about r3)
     lhs = dot(eq0.omega(t), eq0.L(t) - eq0.L(t - eq0.tau))

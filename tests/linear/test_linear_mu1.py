@@ -92,7 +92,7 @@ def test_threshold_job_reports_and_plots(tmp_path, monkeypatch):
     job = ThresholdJob()
     monkeypatch.setattr(ThresholdJob, "bs", (-2.0, 2.0))
     values = P.resolve({**FIGURE_GAINS[2]}, use_defaults=True)
-    rep, extra = job.run("aleksandrov2023.linear_mu1", values, {}, budget=60)
+    rep, extra = job.run("aleksandrov2023.linear_mu1", values, {}, budget=None)
     assert [r.status.value for r in rep.results] == ["estimated"] * 6
     path = job.plot(extra, tmp_path / "h.png")
     assert (tmp_path / "h.png").stat().st_size > 10_000 and path.endswith("h.png")

@@ -34,11 +34,13 @@ def test_fig2_does_not_stabilize():
     assert claim.status is Status.SIMULATED and claim.value["min_distance_tail"] > 0.5
 
 
+@pytest.mark.slow
 def test_fig3_converges_with_mu_2():
     _, rep, res = report("aleksandrov2023.fig3")
     assert rep.holds and runs(res)["Fig. 3: b = −2, μ = 2"]["t_1e3"] is not None
 
 
+@pytest.mark.slow
 def test_fig4_does_not_converge_but_is_not_chaotic():
     """The paper calls the Fig. 4 motion chaotic; nearby histories do not separate (a finding)."""
     _, rep, res = report("aleksandrov2023.fig4")
@@ -59,6 +61,7 @@ def test_fig4_over_a_100_times_longer_interval():
     assert sens.value["max_separation"] < 1e-5
 
 
+@pytest.mark.slow
 def test_fig5_converges_slowly():
     _, rep, res = report("aleksandrov2023.fig5")
     (s,) = runs(res).values()
@@ -88,6 +91,7 @@ def test_fig7_history_norm_is_above_the_printed_region():
 
 
 # -- paper 000: discrete delay vs the PID with an exponential kernel ------------------------------------
+@pytest.mark.slow
 def test_delayed_and_pid_converge_and_the_pid_is_faster_and_smoother():
     _, rep, res = report("aleksandrov2026.example")
     assert rep.holds, rep.as_text()
@@ -100,6 +104,7 @@ def test_delayed_and_pid_converge_and_the_pid_is_faster_and_smoother():
 
 
 # -- paper 001: a time-varying coefficient -------------------------------------------------------------
+@pytest.mark.slow
 def test_decreasing_dissipation_beta_7_8_converges_and_8_7_does_not():
     _, rep, res = report("aleksandrov2017.example")
     assert rep.holds, rep.as_text()
@@ -110,6 +115,7 @@ def test_decreasing_dissipation_beta_7_8_converges_and_8_7_does_not():
     assert r["h = (1+t)^(−8/7)"]["final_distance"] > 1e-2
 
 
+@pytest.mark.slow
 def test_bounded_not_attractive_claim_fails_for_the_converging_case():
     """The same claim applied to β = 7/8 must fail: ∫h diverges, so no positive energy limit."""
     from lkverify.simulate import BoundedNotAttractive
@@ -133,6 +139,7 @@ def test_cli_simulate_fig6_json_and_png(tmp_path, capsys):
     assert run["value"]["t_1e2"] is not None and run["value"]["t_1e3"] is not None
 
 
+@pytest.mark.slow
 def test_cli_simulate_2017_shows_both_cases(capsys):
     code = main(["simulate", "aleksandrov2017.example"])
     out = capsys.readouterr().out

@@ -32,7 +32,7 @@ def scalar_delay_system():
     return System([Equation(x, [Term(-a * x(t - tau)[0], text="−a x(t−τ)")])], parameters=P)
 
 
-@pytest.mark.parametrize("history", [1, sympy.cos(t)])
+@pytest.mark.parametrize("history", [1, pytest.param(sympy.cos(t), marks=pytest.mark.slow)])
 def test_discrete_delay_matches_the_method_of_steps(history):
     a, tau = sympy.Rational(13, 10), sympy.Rational(7, 10)
     pieces = method_of_steps(a, tau, history, 5)

@@ -81,6 +81,7 @@ def test_linear_margin_matches_the_closed_form(serial):
     assert set(verdict[a > math.pi / 2 + 0.1]) == {"unstable"}
 
 
+@pytest.mark.slow
 def test_two_worker_local_cluster_equals_serial(serial, tmp_path):
     par = sweep(toy(), grid=["a=0.25:2.5:10"], out=tmp_path / "par.parquet",
                 options=SweepOptions(workers=2, chunk_size=3))
@@ -89,6 +90,7 @@ def test_two_worker_local_cluster_equals_serial(serial, tmp_path):
     assert columns(par.table, names) == columns(serial.table, names)
 
 
+@pytest.mark.slow
 def test_existing_scheduler_with_and_without_workers(serial, tmp_path, monkeypatch):
     from distributed import LocalCluster
 

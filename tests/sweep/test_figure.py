@@ -90,6 +90,7 @@ def test_2d_map_written_with_every_layer(tmp_path, captured):
     assert "aleksandrov2023.fig1" in fig.get_suptitle() and "t = 100" in fig.get_suptitle()
 
 
+@pytest.mark.slow
 def test_title_shows_values_as_a_reader_writes_them(tmp_path, captured):
     cols, meta = plane()
     meta = {**meta, "sets": {"F": "Matrix([[h, 0, 0], [0, h, 0], [0, 0, h]])"}, "fixed": {"a": "2", "F": "x"}}
@@ -111,6 +112,7 @@ def test_marks_filled_when_the_simulation_agrees(tmp_path, captured):
     assert {"Fig. 1", "Fig. 2"} <= labels
 
 
+@pytest.mark.slow
 def test_outcome_cells_follow_the_point_column(tmp_path, captured):
     cols, meta = plane()
     order = np.random.default_rng(1).permutation(cols["point"].size)
@@ -149,6 +151,7 @@ def test_empty_and_full_regions_said_in_the_legend(tmp_path, captured):
     assert any(t.startswith("Theorem 1: hypotheses hold everywhere on this grid") for t in texts)
 
 
+@pytest.mark.slow
 def test_no_linear_margin_said(tmp_path, captured):
     cols, meta = plane(linear=False)
     plot_map(pa.table(cols), meta, tmp_path / "map.png")

@@ -64,6 +64,7 @@ def test_theorem3_flipped_sign_is_refuted(theorem3_derived):
     assert {g["claimed_latex"][0] for g in res.to_json()["confirmed"] if g["claimed"]} <= {t.latex for t in terms}
 
 
+@pytest.mark.slow
 def test_theorem3_dropped_term_is_refuted(theorem3_derived):
     claim, reference = theorem3_derived
     terms = [term for term in claim.terms if not term.text.startswith("−α‖s(t−τ)")]
@@ -74,6 +75,7 @@ def test_theorem3_dropped_term_is_refuted(theorem3_derived):
     assert any("Leibniz" in d or "lower limit" in d for d in diff.derived), diff.derived
 
 
+@pytest.mark.slow
 def test_theorem3_wrong_coefficient_is_refuted(theorem3_derived):
     claim, reference = theorem3_derived
     terms = list(claim.terms)
@@ -92,7 +94,7 @@ def test_theorem1_printed_vdot_differs_in_exactly_one_sign():
     """Paper 000 prints +γ f^ν(t−τ) ωᵀL(t−τ); the derivation gives −γ f^ν(t−τ) ωᵀL(t−τ)."""
     th = item("aleksandrov2026.theorem1")
     claim = th.printed[0]
-    res = claim.check({}, values={}, budget=120)
+    res = claim.check({}, values={}, budget=None)
     assert res.status is Status.FAILED
     (diff,) = res.differences
     assert diff.kind == "sign"
@@ -106,7 +108,7 @@ def test_theorem1_printed_vdot_with_that_sign_corrected_is_exact():
     claim = th.printed[0]
     terms = [Term(-term.expr, text="−γf^ν(t−τ)ωᵀL(t−τ)") if term.text.startswith("+γf^ν") else term
              for term in claim.terms]
-    res = dataclasses.replace(claim, terms=tuple(terms)).check({}, values={}, budget=120)
+    res = dataclasses.replace(claim, terms=tuple(terms)).check({}, values={}, budget=None)
     assert res.status is Status.EXACT, res.as_text()
 
 
