@@ -24,6 +24,9 @@ third order in the width; the supremum of the quadratic part over the box is
 proved by :func:`cube_quadratic_sup`).  :mod:`lkverify.certify.forms` plugs in
 its own strategy for the faces of the cube.
 
+:class:`Objective` (with its Taylor derivative programs) is in :mod:`.objective` and
+:func:`cube_quadratic_sup` in :mod:`.cube_quadratic`; both are re-exported here.
+
 Examples
 --------
 >>> import sympy
@@ -41,23 +44,19 @@ from __future__ import annotations
 import dataclasses
 import enum
 import heapq
-import itertools
 import math
 import time
 from collections.abc import Callable, Sequence
 
-import flint
-import numpy as np
-import sympy
 from flint import arb
 
 from ..errors import InputError
 from .affine import AffineForm
-from .functions import compile_arb, lambdify_real
-from .intervals import compile_program, float_down, float_up
-from .intervals.balls import _JUMPS, _ZERO
-from .intervals.convert import _real_dummies
-from .regions import Region
+from .cube_quadratic import QUADRATIC_BRANCH_DEPTH, cube_quadratic_sup  # re-exported: moved to cube_quadratic
+from .intervals import float_down, float_up
+from .intervals.balls import _ZERO
+from .objective import (TAYLOR2_MAX_DIMENSION, TAYLOR3_MAX_DIMENSION,  # re-exported: moved to objective
+                        TAYLOR_CACHE_SIZE, Objective, TaylorPrograms)
 
 __all__ = [
     "Affine", "BoxBound", "BranchAndBound", "BranchProgress", "ENCLOSURES", "Enclosure", "Goal", "MeanValue",
@@ -70,13 +69,6 @@ __all__ = [
 _INF = math.inf
 #: how often (seconds) a ``progress`` callback is called
 PROGRESS_SECONDS = 0.5
-#: :class:`Taylor` compiles third derivatives (n(n+1)(n+2)/6 of them) up to this many variables ...
-TAYLOR3_MAX_DIMENSION = 6
-#: ... and second derivatives (n(n+1)/2) up to this many; beyond, it is :class:`MeanValue`
-TAYLOR2_MAX_DIMENSION = 12
-#: compiled derivative programs kept for objectives seen again (the same template in two bound steps)
-TAYLOR_CACHE_SIZE = 16
-_TAYLOR_CACHE: dict = {}
 
 
 
@@ -169,154 +161,6 @@ class BoxBound:
     centre: tuple
     centre_value: arb
     inside: bool
-
-
-class Objective:
-    """A SymPy expression on a region, compiled to arb (value; value and gradient; affine) and to NumPy.
-
-    Examples
-    --------
-    >>> import sympy
-    >>> from lkverify.certify.regions import parse_region
-    >>> x = sympy.Symbol("x")
-    >>> Objective(x**2, parse_region({x: (0, 2)}, [x**2])).f_float(np.array([1.5]))
-    2.25
-    """
-
-    def __init__(self, expr: sympy.Expr, region: Region, *, gradient: bool = True):
-        self.expr = expr
-        self.region = region
-        self.n = len(region.variables)
-        self.compiled = compile_arb(expr, region.variables, gradient=gradient, signs=region.signs)
-        self.np_f = lambdify_real(list(region.variables), expr)
-
-    def roots(self) -> list:
-        """The region as the engine's list of root boxes ``(piece, lo, hi)``."""
-        return [(0, tuple(self.region.lo_out), tuple(self.region.hi_out))]
-
-    def point_ball(self, point: Sequence[float]) -> arb:
-        """The enclosure of f at an exact binary point."""
-        return self.compiled.balls(*[arb(float(x)) for x in point])
-
-    def f_float(self, x: np.ndarray) -> float:
-        """f at a point in floating point (``-inf`` where not finite)."""
-        v = float(self.np_f(*x))
-        return v if math.isfinite(v) else -_INF
-
-    def taylor_programs(self, order: int) -> TaylorPrograms | None:
-        """The derivatives up to ``order`` (2 or 3) compiled to arb, or None where Taylor forms do not apply.
-
-        Compiled once per order, on first use (and kept for :data:`TAYLOR_CACHE_SIZE`
-        expressions, per variables, signs and arb precision).  None if the expression has no
-        gradient, or a derivative up to ``order`` has a jump (``sign``, ``Heaviside``: the
-        derivatives of ``Abs``, ``Min``, ``Max``) or cannot be enclosed.
-        """
-        cache = self.__dict__.setdefault("_taylor", {})
-        if order not in cache:
-            if not self.compiled.has_gradient:
-                cache[order] = None
-            else:
-                key = (self.expr, self.region.variables, tuple(self.region.signs), order, flint.ctx.prec)
-                try:
-                    cache[order] = _TAYLOR_CACHE[key]
-                except KeyError:
-                    cache[order] = _TAYLOR_CACHE[key] = TaylorPrograms.compile(self, order)
-                    while len(_TAYLOR_CACHE) > TAYLOR_CACHE_SIZE:
-                        _TAYLOR_CACHE.pop(next(iter(_TAYLOR_CACHE)))
-        return cache[order]
-
-
-def _shared_subexpressions(exprs: list) -> list:
-    """The expressions rebuilt so that their common subexpressions (SymPy's ``cse``) are shared nodes.
-
-    The interval compiler emits one line per distinct node; sums of products that
-    share factors (the derivatives of a trigonometric expression) become shared
-    partial products.  The rebuilt trees (``evaluate=False``, so SymPy does not
-    flatten them again) are the same functions, only grouped differently.
-    """
-    replacements, reduced = sympy.cse(exprs)
-    table: dict = {}
-
-    def rebuild(node):
-        hit = table.get(node)
-        if hit is not None:
-            return hit
-        if not node.args:
-            return node
-        return node.func(*[rebuild(a) for a in node.args], evaluate=False)
-
-    for sym, e in replacements:
-        table[sym] = rebuild(e)
-    return [rebuild(e) for e in reduced]
-
-
-@dataclasses.dataclass(frozen=True)
-class TaylorPrograms:
-    """An objective's derivatives up to second or third order, compiled to arb (for :class:`Taylor`).
-
-    ``box(*balls)`` returns ``[f, ∂₁f, …, ∂ₙf, H…, T…]`` (the Hessian's upper
-    triangle, then for ``order`` 3 the third derivatives ∂ᵢ∂ⱼ∂ₖf, i ≤ j ≤ k);
-    ``point(*balls)`` returns ``[f, ∇f, H…]`` (no third derivatives), for the
-    expansion point.  ``hess[i][j]`` is the position of ∂ᵢ∂ⱼf in both lists,
-    ``third`` lists ``(position, i, j, k, shares)`` per third derivative, with
-    ``shares`` the pairs ``(q, ball)`` of the weight the derivative's term
-    |∂ᵢⱼₖf| rᵢrⱼrₖ gets in the remainder bound of coordinate q.  The derivatives
-    are SymPy's (``diff``), compiled after common-subexpression elimination.
-    """
-
-    order: int
-    box: Callable
-    point: Callable
-    hess: tuple
-    third: tuple
-
-    @classmethod
-    def compile(cls, obj: Objective, order: int) -> TaylorPrograms | None:
-        reg = obj.region
-        n = obj.n
-        if n == 0 or n > (TAYLOR3_MAX_DIMENSION if order >= 3 else TAYLOR2_MAX_DIMENSION):
-            return None
-        # the same real Dummy variables (with the region's signs) as compile_arb
-        dummies = _real_dummies(reg.variables, reg.signs)
-        dexpr = obj.expr.xreplace(dummies)
-        dv = [dummies[v] for v in reg.variables]
-        flags = [bool(d.is_nonnegative) for d in dv]
-        back = {d: v for v, d in dummies.items()}
-        # Taylor's theorem with the Lagrange remainder needs f smooth on the box: no derivative
-        # may jump (sign, Heaviside: the derivatives of Abs, Min, Max) or be left unevaluated
-        bad = (sympy.Derivative, sympy.Subs, sympy.DiracDelta, *_JUMPS)
-        pairs = [(i, j) for i in range(n) for j in range(i, n)]
-        triples = [(i, j, k) for i, j in pairs for k in range(j, n)] if order >= 3 else []
-        try:
-            grads = [sympy.diff(dexpr, d) for d in dv]
-            if any(g.has(*bad) for g in grads):
-                return None
-            hess = {(i, j): sympy.diff(grads[i], dv[j]) for i, j in pairs}
-            if any(h.has(*bad) for h in hess.values()):
-                return None
-            base = [dexpr, *grads, *hess.values()]
-            third = [sympy.diff(hess[i, j], dv[k]) for i, j, k in triples]
-            if any(t.has(*bad) for t in third):
-                return None
-            # the derivatives share most of their products: common subexpressions, evaluated once
-            shared = _shared_subexpressions([*base, *third])
-            point = compile_program(shared[:len(base)], dv, nonnegative=flags, originals=back).function()
-            box = compile_program(shared, dv, nonnegative=flags, originals=back).function() if third else point
-        except (InputError, NotImplementedError):
-            return None
-        index = [[0] * n for _ in range(n)]
-        for k, (i, j) in enumerate(pairs):
-            index[i][j] = index[j][i] = 1 + n + k
-        top = 1 + n + len(pairs)
-        third_index = []
-        for m, (i, j, k) in enumerate(triples):
-            # the remainder ⅙ Σ over the mult ordered triples; an index that occurs c times comes first
-            # in c/3 of them, and takes that share of the triple's term (see Taylor._third_order_weights)
-            mult = len(set(itertools.permutations((i, j, k))))
-            shares = tuple((q, arb(mult * ((q == i) + (q == j) + (q == k))) / 18) for q in sorted({i, j, k}))
-            third_index.append((top + m, i, j, k, shares))
-        third_index = tuple(third_index)
-        return cls(3 if order >= 3 else 2, box, point, tuple(map(tuple, index)), third_index)
 
 
 class Enclosure:
@@ -501,263 +345,6 @@ class MeanValueAffine(Enclosure):
 
     use_gradient = True
     use_affine = True
-
-
-# ---------------------------------------------------------------------------
-# the supremum of a quadratic over the cube [-1, 1]^m, proved (for the Taylor forms)
-# ---------------------------------------------------------------------------
-
-def _separable_sup(b, S) -> arb:
-    """Σᵢ maxₜ(|bᵢ|t + aᵢt²) over t ∈ [0, 1], aᵢ = Sᵢᵢ + Σⱼ≠ᵢ |Sᵢⱼ|: a bound of sup b·ε + εᵀSε on the cube.
-
-    Valid because 2|εᵢεⱼ| ≤ εᵢ² + εⱼ² (so Σᵢ≠ⱼ Sᵢⱼεᵢεⱼ ≤ Σᵢ εᵢ² Σⱼ≠ᵢ |Sᵢⱼ|) and the
-    bound is increasing in |bᵢ| and aᵢ (upper ends are used throughout).
-    """
-    m = len(b)
-    total = _ZERO
-    for i in range(m):
-        Si = S[i]
-        a = Si[i].upper()
-        for j in range(m):
-            if j != i:
-                a = a + Si[j].abs_upper()
-        beta = b[i].abs_upper()
-        if a < 0 and not beta >= -2 * a:
-            phi = beta * beta / (-4 * a)        # the vertex (always ≥ the constrained maximum for a < 0)
-        else:
-            phi = beta + a                      # t = 1 (a ≥ 0, or the vertex lies beyond 1)
-        total = total + phi.upper()
-    return total
-
-
-def _cholesky(A):
-    """The lower Cholesky factor of a symmetric float matrix (list of rows), or None if not positive definite."""
-    m = len(A)
-    L = [[0.0] * m for _ in range(m)]
-    for k in range(m):
-        Lk = L[k]
-        d = A[k][k]
-        for p in range(k):
-            d -= Lk[p] * Lk[p]
-        if not d > 1e-300:
-            return None
-        d = math.sqrt(d)
-        Lk[k] = d
-        for i in range(k + 1, m):
-            Li = L[i]
-            v = A[i][k]
-            for p in range(k):
-                v -= Li[p] * Lk[p]
-            Li[k] = v / d
-    return L
-
-
-def _chol_solve(A, rhs):
-    """Solve A x = rhs for a symmetric positive definite float matrix (None if not positive definite)."""
-    L = _cholesky(A)
-    if L is None:
-        return None
-    m = len(A)
-    y = [0.0] * m
-    for i in range(m):
-        Li = L[i]
-        v = rhs[i]
-        for p in range(i):
-            v -= Li[p] * y[p]
-        y[i] = v / Li[i]
-    x = [0.0] * m
-    for i in range(m - 1, -1, -1):
-        v = y[i]
-        for p in range(i + 1, m):
-            v -= L[p][i] * x[p]
-        x[i] = v / L[i][i]
-    return x
-
-
-def _cube_qp_float(b, S, max_iter: int = 24):
-    """An approximate maximiser of b·e + eᵀSe on the cube [-1, 1]^m (floats; a primal active-set method).
-
-    Only the quality of the proved bound depends on it, never its validity.
-    """
-    m = len(b)
-    e = [0.0] * m
-    fixed = set()
-    for _ in range(max_iter):
-        free = [i for i in range(m) if i not in fixed]
-        if free:
-            A = [[-2.0 * S[i][j] for j in free] for i in free]
-            rhs = [b[i] + 2.0 * sum(S[i][j] * e[j] for j in fixed) for i in free]
-            x = _chol_solve(A, rhs)
-            if x is None:
-                # not concave on the free coordinates: the most convex one goes to the face its
-                # partial derivative points to, and the search goes on with the others
-                i = max(free, key=lambda k: S[k][k])
-                g = b[i] + 2.0 * sum(S[i][k] * e[k] for k in range(m) if k != i)
-                e[i] = 1.0 if g >= 0.0 else -1.0
-                fixed.add(i)
-                continue
-            # step from e towards the free maximiser x, stopping at the first face reached
-            step, hit = 1.0, -1
-            for i, xi in zip(free, x):
-                d = xi - e[i]
-                if d > 0.0 and e[i] + d > 1.0:
-                    t = (1.0 - e[i]) / d
-                elif d < 0.0 and e[i] + d < -1.0:
-                    t = (-1.0 - e[i]) / d
-                else:
-                    continue
-                if t < step:
-                    step, hit = t, i
-            for i, xi in zip(free, x):
-                e[i] = min(1.0, max(-1.0, e[i] + step * (xi - e[i])))
-            if hit >= 0:
-                e[hit] = 1.0 if e[hit] > 0.0 else -1.0
-                fixed.add(hit)
-                continue
-        # free coordinates optimal: release a face whose multiplier has the wrong sign
-        worst, out = 0.0, -1
-        for j in fixed:
-            g = (b[j] + 2.0 * sum(S[j][k] * e[k] for k in range(m))) * e[j]
-            if g < worst:
-                worst, out = g, j
-        if out < 0:
-            break
-        fixed.discard(out)
-    return e
-
-
-def _dual_sup(b, S, mu) -> arb | None:
-    """Σμᵢ + ¼ bᵀ(diag μ − S)⁻¹b, proved, or None if diag μ − S is not proved positive definite.
-
-    For μ ≥ 0 and P = diag μ − S ≻ 0: b·ε + εᵀSε = b·ε − εᵀPε + Σμᵢεᵢ² ≤ sup over
-    all ε of (b·ε − εᵀPε) + Σμᵢ = ¼ bᵀP⁻¹b + Σμᵢ on the cube.  P ≻ 0 is proved by
-    an LDLᵀ factorisation in arb whose pivots are all certainly > 0.
-    """
-    m = len(b)
-    L = [[_ZERO] * m for _ in range(m)]
-    D = []
-    for k in range(m):
-        d = arb(mu[k]) - S[k][k]
-        for p in range(k):
-            d = d - L[k][p] * L[k][p] * D[p]
-        if not d > 0:
-            return None
-        D.append(d)
-        for i in range(k + 1, m):
-            v = -S[i][k]
-            for p in range(k):
-                v = v - L[i][p] * L[k][p] * D[p]
-            L[i][k] = v / d
-    total = _ZERO
-    y = []
-    for i in range(m):
-        v = b[i]
-        for p in range(i):
-            v = v - L[i][p] * y[p]
-        y.append(v)
-        total = total + v * v / D[i]
-    total = total / 4
-    for x in mu:
-        total = total + arb(x)
-    return total
-
-
-#: at most this many convex coordinates are fixed at ±1 (both ways) in :func:`cube_quadratic_sup`
-QUADRATIC_BRANCH_DEPTH = 4
-
-
-def _point_quadratic_sup(b, S, SA, depth: int = QUADRATIC_BRANCH_DEPTH) -> arb:
-    """A proved bound of sup b·ε + εᵀSε on the cube for a point matrix S (floats; SA: the same as arb) and balls b.
-
-    A coordinate with Sᵢᵢ ≥ 0 enters convexly, so the supremum is attained at
-    εᵢ = ±1: both faces are bounded (recursively, ``depth`` levels at most) and
-    the larger bound kept.  On the rest the Lagrangian dual bound of
-    :func:`_dual_sup` is used, with the multipliers of an approximate maximiser
-    (floats), or the separable bound where that does not prove positive definite.
-    """
-    m = len(b)
-    if m == 0:
-        return _ZERO
-    k = max(range(m), key=lambda i: S[i][i])
-    if S[k][k] >= 0 and depth > 0:
-        rest = [i for i in range(m) if i != k]
-        Sr = [[S[i][j] for j in rest] for i in rest]
-        SAr = [[SA[i][j] for j in rest] for i in rest]
-        # the face bⱼ points to first; the other one only if its separable bound does not settle it
-        first = 1 if float(b[k].mid()) >= 0 else -1
-        best = None
-        for sgn in (first, -first):
-            br = [b[i] + 2 * sgn * SA[i][k] for i in rest]
-            head = sgn * b[k] + SA[k][k]
-            if best is not None and (head + _separable_sup(br, SAr)).upper() <= best:
-                continue
-            v = (head + _point_quadratic_sup(br, Sr, SAr, depth - 1)).upper()
-            best = v if best is None or v > best else best.union(v).upper()
-        return best
-    fallback = _separable_sup(b, SA)
-    bm = [float(x.mid()) for x in b]
-    Sm = S
-    if not all(math.isfinite(x) for x in bm):
-        return fallback
-    e = _cube_qp_float(bm, Sm)
-    scale = max(abs(x) for row in Sm for x in row) * 1e-9 + 1e-300
-    mu = []
-    for i in range(m):
-        if abs(e[i]) >= 1.0:
-            g = bm[i] + 2.0 * sum(Sm[i][j] * e[j] for j in range(m))
-            mu.append(max(0.0, g * e[i] / 2.0) + scale)
-        else:
-            mu.append(scale)
-    # a float Cholesky first: the proof in arb is tried only where it can succeed
-    if _cholesky([[(mu[i] if i == j else 0.0) - Sm[i][j] for j in range(m)] for i in range(m)]) is None:
-        return fallback
-    dual = _dual_sup(b, SA, mu)
-    if dual is None:
-        return fallback
-    dual = dual.upper()
-    return dual if dual < fallback else fallback
-
-
-def cube_quadratic_sup(b: Sequence[arb], S: Sequence[Sequence[arb]], enough: float = -_INF) -> arb:
-    """A proved upper bound of sup ``Σᵢ bᵢεᵢ + Σᵢⱼ Sᵢⱼεᵢεⱼ`` over ε ∈ [-1, 1]^m, for all b, S in the balls.
-
-    ``S`` must be symmetric (``S[i][j]`` and ``S[j][i]`` the same ball).  Two
-    bounds, the smaller is returned:
-
-    * separable: ``2|εᵢεⱼ| ≤ εᵢ² + εⱼ²`` moves the off-diagonal terms to the
-      diagonal, then each coordinate's parabola is maximised exactly;
-    * at the midpoints of S (the radii add ``Σ rad Sᵢⱼ``): coordinates that
-      enter convexly (Sᵢᵢ ≥ 0) are fixed at ±1, both ways; then Lagrangian
-      duality: an approximate maximiser (floats) gives multipliers μ ≥ 0 of
-      the constraints εᵢ² ≤ 1 and ``Σμᵢ + ¼ bᵀ(diag μ − S)⁻¹b`` is proved in
-      arb (exact for a concave quadratic at the optimal μ).
-
-    ``enough``: the second bound is skipped when the first is already ≤ it.
-
-    Examples
-    --------
-    >>> from flint import arb
-    >>> b, S = [arb(1), arb(0)], [[arb(-1), arb(-0.5)], [arb(-0.5), arb(-1)]]
-    >>> u = cube_quadratic_sup(b, S)       # the maximum is 1/3, at ε = (2/3, -1/3)
-    >>> u >= arb(1) / 3, float(u.upper()) < 0.3334
-    (True, True)
-    """
-    m = len(b)
-    if m == 0:
-        return _ZERO
-    best = _separable_sup(b, S)
-    if best <= enough:
-        return best
-    Sm = [[float(x.mid()) for x in row] for row in S]
-    if not all(math.isfinite(x) for row in Sm for x in row) or not all(x.is_finite() for x in b):
-        return best
-    SA = [[arb(x) for x in row] for row in Sm]
-    slack = _ZERO                           # εᵀSε − εᵀ(mid S)ε ≤ slack on the cube
-    for i in range(m):
-        for j in range(m):
-            slack = slack + (S[i][j] - SA[i][j]).abs_upper()
-    v = (_point_quadratic_sup(list(b), Sm, SA) + slack).upper()
-    return v if v < best else best
 
 
 def _intersect(a: arb, b: arb) -> arb:
