@@ -210,10 +210,6 @@ def decided(text, ok, detail="", *, certified=False) -> Condition:
 _cond = decided
 
 
-def _fails(rule: str, text: str, detail: str, bound=None) -> Application:
-    return Application(rule, bound, (Condition(text, Status.FAILED, detail),))
-
-
 # -- nonnegativity, structurally --------------------------------------------------------------
 def nonnegative(expr) -> bool:
     """True when ``expr`` is ≥ 0 by its structure (sums and products of nonnegative factors).

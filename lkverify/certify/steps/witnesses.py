@@ -290,9 +290,6 @@ def _ball(expr, zballs):
     return enclose(expr, {z: zballs[z] for z in expr.free_symbols}, prec=_PREC)
 
 
-#: step lengths tried at once along a search direction (one vectorised evaluation)
-
-
 class _Stop(Exception):
     """Raised from inside the optimiser when the budget runs out (the best point is kept)."""
 
