@@ -145,7 +145,7 @@ def _sigma_claim(mutate=False):
     from lkverify import DerivativeClaim, Functional, System, dot, norm_squared, quad, t
     from lkverify.proofs.aleksandrov2017.equations import P, J, eta, gamma, h, nu, omega
 
-    T2 = importlib.import_module("lkverify.proofs.aleksandrov2017.theorem2")
+    T2 = importlib.import_module("lkverify.proofs.aleksandrov2017.theorem2_functional")
     P2 = copy.deepcopy(P)                        # paper 001's parameters and a symbolic σ > 0
     sg = P2.scalar("sigma", positive=True)
     e2, hd, M = norm_squared(eta), sympy.Derivative(h(t), t), T2.M
