@@ -88,6 +88,7 @@ def test_a_smaller_alpha8_written_differently_passes(checked, values, chosen):
     assert _rate(checked, values, alpha8=sympy.sqrt(half**2))[1] is Status.CERTIFIED
 
 
+@pytest.mark.slow
 def test_dropped_lemma_term_in_w_refuted_by_the_conclusion(checked, values):
     step, res = checked["vdot"]
     lemma = next(tb for tb in step.bounds if tb.terms == ("−γh^ν‖η‖^{σ+1}",))

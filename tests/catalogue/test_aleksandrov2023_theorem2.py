@@ -134,6 +134,7 @@ def test_P4_written_differently_still_holds():
     assert claims[3].check({}, values={}).status is Status.EXACT
 
 
+@pytest.mark.slow
 def test_counter_instances_do_not_converge_and_the_instance_converges():
     trs = theorem2_counter.simulate()
     rep = theorem2_counter.run(trajectories=trs)

@@ -69,6 +69,7 @@ def test_W_has_the_printed_negative_terms():
     assert all(c < 0 for c in W.coeffs())
 
 
+@pytest.mark.slow
 def test_the_printed_final_estimates_hold_at_the_choices():
     # ½(c6‖y‖² + α2∫‖y‖⁴) + c5‖x‖² + α1∫‖x‖² ≤ L and W ≤ −½(m14‖x‖² + m24‖y‖⁴ + β1∫‖x‖² + β2∫‖y‖⁴), exactly
     vals = _values()[0]

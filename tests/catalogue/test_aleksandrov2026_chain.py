@@ -43,6 +43,7 @@ def test_a_region_too_large_is_refused_with_the_monomial(defaults):
     assert status is Status.FAILED and "W has the monomial" in detail  # … but W is no longer negative
 
 
+@pytest.mark.slow
 def test_gamma_too_small_fails_the_lower_bound(defaults):
     choices, values, checked = defaults
     small = P.resolve({**choices, "gamma": "1"}, use_defaults=True)
@@ -51,6 +52,7 @@ def test_gamma_too_small_fails_the_lower_bound(defaults):
     assert status is Status.FAILED and "V ≥ φ fails" in detail and "w**2" in detail
 
 
+@pytest.mark.slow
 def test_epsilon_outside_0_1_fails_inequality_10(defaults):
     choices, values, checked = defaults
     bad = P.resolve({**choices, "epsilon": "1"}, use_defaults=True)

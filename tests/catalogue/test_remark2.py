@@ -17,6 +17,7 @@ def test_constants_at_the_section6_data():
         "alpha1": sympy.Rational(1, 2), "alpha2": 3, "alpha3": 4}
 
 
+@pytest.mark.slow
 def test_energy_rate_is_exact_for_every_h_and_a_wrong_factor_is_refuted():
     assert energy_rate.check({}, values={}, budget=120).status is Status.EXACT
     wrong = dataclasses.replace(energy_rate, terms=(Term(-h(t) * dot(omega(t), D * omega(t)), text="−hωᵀDω"),))

@@ -112,7 +112,7 @@ def test_mutated_conditions_fail(st):
 
 @pytest.mark.parametrize("st", [
     Statement(2, "Fig. 2 converges", behaviour="converges"),
-    Statement(6, "Fig. 6 does not converge", behaviour="does not converge"),
+    pytest.param(Statement(6, "Fig. 6 does not converge", behaviour="does not converge"), marks=pytest.mark.slow),
     pytest.param(Statement(3, "Fig. 3 does not converge", behaviour="does not converge"), marks=pytest.mark.slow),
     Statement(1, "Fig. 1 does not converge", behaviour="does not converge"),
 ], ids=lambda st: st.quote)
@@ -151,6 +151,7 @@ def test_bad_statements_are_refused(kw, match):
 
 # -- the item ----------------------------------------------------------------------------------------
 
+@pytest.mark.slow
 def test_item_registered_and_rows():
     (item,) = find_items("aleksandrov2023.section6")
     assert item is section6 is paper.section6 and "section6" in paper.__all__

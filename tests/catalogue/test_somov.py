@@ -56,6 +56,7 @@ def test_kinematics_item_and_initial_attitude():
 
 
 # -- linearisation ------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_linearisation_exact_and_findings():
     rep = lin.linearisation.run({})
     st = _status(rep.results)

@@ -445,6 +445,7 @@ def test_sphere_and_ball_charts():
         unit_vector_near(R_DIR)
 
 
+@pytest.mark.slow
 def test_cap_chart_sup_matches_closed_form():
     # sup over the cap ρ ≤ π/6 and u ∈ S² of cos(ρ/2)·(a×r)·Θu = σ_max((I − rrᵀ)Θ)
     cap = unit_vector_near(R_DIR, rho_max=sympy.pi / 6)

@@ -159,6 +159,7 @@ def test_printed_theorem3_bound_with_a_value_of_lambda_is_refuted():
     assert wit is not None and wit.violation[0] > 0 and set(wit.coefficients) == {"c7"}
 
 
+@pytest.mark.slow
 def test_corrected_theorem3_bound_is_not_refuted():
     # with |b| a large c7 makes the bound true: no witness can work for every c7 ≥ 0
     assert search([LAMBDA_J, OMEGA_K], abs(b) * (lam + c7 * tau) * w * I, exists=[c7]) is None

@@ -278,6 +278,7 @@ def test_simulate_budget_ends_undecided(capsys):
     assert doc["verdict"].startswith("undecided")
 
 
+@pytest.mark.slow
 def test_negative_damping_is_a_blow_up_with_its_time(capsys):
     code, out, err = run(capsys, "simulate", "aleksandrov2017.example", "--set", "h=-1", "--json")
     assert code == 1 and "Traceback" not in err

@@ -41,6 +41,7 @@ def test_text_report_states_the_history_override_and_distance(run_cli):
     assert "never" not in out
 
 
+@pytest.mark.slow
 def test_convention_on_the_command_line(run_cli):
     code, out, _ = run_cli("simulate", "aleksandrov2023.fig6", "--t-end", "5", "--convention", "zyx", "--json",
                            "--quiet")

@@ -86,6 +86,7 @@ def test_exponential_kernel_is_exact_and_matches_the_quadrature_path():
     assert np.max(np.abs(slow.states["x"][:, 0] - ref.y[0])) < 1e-6
 
 
+@pytest.mark.slow
 def test_window_auxiliary_path_matches_the_quadrature_path():
     P = Parameters()
     tau = P.delay("tau", default=1)

@@ -202,6 +202,7 @@ def memory_toy():
                    series=[Series("x", lambda S: S["x"][:, 0])], distance=distance)
 
 
+@pytest.mark.slow
 def test_a_system_the_fast_path_does_not_take_runs_point_by_point(tmp_path):
     res = sweep(memory_toy(), grid=["a=1:3:2"], out=tmp_path / "m.parquet",
                 options=SweepOptions(scheduler="synchronous", samples=61))

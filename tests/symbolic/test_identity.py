@@ -44,6 +44,7 @@ def _by_text(terms, prefix):
     return i
 
 
+@pytest.mark.slow
 def test_theorem3_flipped_sign_is_refuted(theorem3_derived):
     claim, reference = theorem3_derived
     terms = list(claim.terms)
