@@ -10,9 +10,11 @@ import dataclasses
 import pytest
 import sympy
 
-from lkverify import Equation, Functional, Parameters, System, Term, Vector, t, window_integral, xi
+from lkverify import (Equation, Functional, Parameters, System, Term, Vector, memory_integral, norm_power, t,
+                      window_integral, xi)
 from lkverify.certify.steps import Rayleigh, Region, TermBound, TermwiseBound, norm_measure
 from lkverify.certify.steps.measures import window_integral_measure
+from lkverify.certify.steps.memory import memory_measure
 from lkverify.certify.steps.rules import Application, Condition, Rule
 from lkverify.errors import InternalError, RuleSoundnessError
 from lkverify.status import Status
@@ -73,6 +75,19 @@ def test_an_unsound_rule_on_a_window_term_is_caught():
     s = TermwiseBound("V ≤ U", W, SYS, "V", [TermBound("∫g‖x‖²", bound, Liar(bound))], bound, [n, I])
     with pytest.raises(RuleSoundnessError, match="the liar's rule"):
         s.check(P.resolve({}))
+
+
+def test_an_unsound_rule_on_a_memory_term_is_caught():
+    Q = memory_measure("Q", x(xi), p=2, kernel=lambda u: sympy.exp(-2 * u))    # ∫_0^t e^{−2(t−ξ)}‖x‖² dξ
+    term = 3 * memory_integral(sympy.exp(-2 * (t - xi)) * norm_power(x(xi), 2))
+    W = Functional([Term(term, text="3∫e^{−2(t−ξ)}‖x‖²")])
+    for bound, caught in [((3 - R(1, 10 ** 6)) * Q.symbol, True), (3 * Q.symbol, False)]:   # 3Q is the truth
+        s = TermwiseBound("V ≤ U", W, SYS, "V", [TermBound("3∫e^{−2(t−ξ)}‖x‖²", bound, Liar(bound))], bound, [n, Q])
+        if caught:
+            with pytest.raises(RuleSoundnessError, match="the liar's rule"):
+                s.check(P.resolve({}))
+        else:
+            assert s.check(P.resolve({})).status is Status.EXACT
 
 
 def test_the_liar_telling_the_truth_is_not_an_error():

@@ -511,8 +511,6 @@ class TermwiseBound:
 
         if isinstance(ctx.budget, Deadline) and ctx.budget.expired:
             return
-        if any(_memory_integral(term.expr) for term in self._signed_terms(tb, ctx)):
-            return  # memory terms ∫_0^t …: their witness model (kernels integrated exactly) costs up to minutes
         used = sympy.sympify(stated).free_symbols  # only the measures the bound is written in: each costs a model
         measures = [m for m in self.measures if m.symbol in used]
         outcome = self._witness(self._signed_terms(tb, ctx), stated, ctx, measures=measures, **CROSS_EXAMINATION)
@@ -545,12 +543,6 @@ class TermwiseBound:
                                 **limits, **({} if self.witness_time is None else {"time": self.witness_time}))
         except InputError:
             return None
-
-
-def _memory_integral(expr) -> bool:
-    """Does ``expr`` contain an integral over the whole memory [0, t]?"""
-    return any(len(lim) == 3 and lim[1] == 0 and lim[2] == _t
-               for node in sympy.sympify(expr).atoms(sympy.Integral) for lim in node.limits)
 
 
 def lyapunov_steps(functional, system, lower, upper, vdot, measures, *, region=None, definitions=None,
