@@ -44,6 +44,8 @@ from .symbolic.claims import DerivativeClaim, IdentityClaim
 from .symbolic.derivative import Block, DerivativeResult, derivative_along
 from .symbolic.identity import IdentityResult, TermDifference, check_identity
 from .catalogue.examples import Example
+from .catalogue.boxrun import BoxPiece, BoxReport, BoxStatus, FailingPoint, run_over_box
+from .declare.boxes import ParameterBox
 from .certify.constants import ConstantsJob, Template
 from .linear import (LinearDelaySystem, certified_interval, certify_delay, linear_report, rightmost_roots,
                      stability_intervals)
@@ -71,6 +73,8 @@ __all__ = [
     "linearise", "linearise_at", "linear_family",
     # sweeps (simulate.family, sweep)
     "compile_family", "SweepOptions", "SweepResult",
+    # theorems over boxes of parameters (declare.boxes, catalogue.boxrun)
+    "BoxPiece", "BoxReport", "BoxStatus", "FailingPoint", "ParameterBox", "run_over_box",
 ]
 
 __version__ = "0.1.0"

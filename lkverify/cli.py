@@ -2,7 +2,7 @@
 
 ``lkverify`` (= ``lkverify report [--json]``)  report of every catalogued item at the papers' defaults
 ``lkverify list``                  the catalogue
-``lkverify check ITEM [--set NAME=VALUE]... [--json] [--budget S] [--load-limit S]``
+``lkverify check ITEM [--set NAME=VALUE]... [--box NAME=LO:HI]... [--max-boxes N] [--json] [--budget S] [--load-limit S]``
 ``lkverify simulate ITEM [--set NAME=VALUE]... [--history STATE=VALUE]... [--t-end T] [--plot FILE.png] [--envelope] [--convention NAME] [--distance {combined,per-vector}] [--json] [--budget S]``
 ``lkverify constants ITEM [--set NAME=VALUE]... [--goal GOAL] [--plot FILE.png] [--json] [--budget S]``
 ``lkverify linear --set A=[[…]] [--set Ad=[[…]]] [--set D=[[…]]] [--orders 0,1,2] [--h-max H] [--h H] [--plot F.png] [--json]``
@@ -97,6 +97,11 @@ def _build_parser() -> argparse.ArgumentParser:
     c.add_argument("item", help="catalogue name (aleksandrov2023.theorem3), a paper, or path/to/proof.py[::item]")
     c.add_argument("--set", dest="sets", action="append", default=[], metavar="NAME=VALUE",
                    help="a parameter value: a number, diag(2,2,2), [[2,0],[0,2]], or an expression in t")
+    c.add_argument("--box", dest="boxes", action="append", default=[], metavar="NAME=LO:HI",
+                   help="check the theorem for every value of NAME in [LO, HI] (exact rationals such as -11/10; a "
+                        "float end makes the results at most certified); repeat for a box of several parameters")
+    c.add_argument("--max-boxes", type=int, default=None, metavar="N",
+                   help="the work limit of a --box run: pieces of the subdivision checked (default 16)")
     c.add_argument("--json", action="store_true", help=JSON_HELP)
     _add_quiet(c)
     c.add_argument("--budget", type=_seconds, default=None, metavar="SECONDS",
@@ -269,9 +274,22 @@ def _dispatch(args) -> int:
         return _report(json_out=getattr(args, "json", False), quiet=args.quiet, jobs=getattr(args, "jobs", None))
     if args.command == "check":
         values = _set_values(args.sets)
+        box = _box(args)
         items = find_items(args.item, load_limit=args.load_limit)
         say = _progress(not args.quiet)
-        reports = [item.run(values, budget=args.budget, progress=say) for item in items]
+        if box is not None:
+            from .catalogue.items import Theorem
+
+            others = [item.qualified_name for item in items if not isinstance(item, Theorem)]
+            if others:
+                raise InputError(f"--box: expected theorems, got {', '.join(others[:3])} (a box is checked for "
+                                 f"theorems only; name one theorem, e.g. aleksandrov2023.theorem3)")
+            reports = [item.run(values, budget=args.budget, progress=say, box=box, max_boxes=args.max_boxes)
+                       for item in items]
+        else:
+            if args.max_boxes is not None:
+                raise InputError("--max-boxes: only with --box NAME=LO:HI")
+            reports = [item.run(values, budget=args.budget, progress=say) for item in items]
         return _emit(reports, json_out=args.json)
     if args.command == "simulate":
         return _simulate(args)
@@ -305,6 +323,15 @@ def _linear(args) -> int:
     report = linear_report(values, orders=orders, h_max=args.h_max, h=args.h, plot=args.plot,
                            say=_progress(not args.quiet))
     return _emit([report], json_out=args.json)
+
+
+def _box(args):
+    """The ``--box`` intervals as a ParameterBox (None without any); ``--max-boxes`` checked."""
+    from .declare.boxes import parse_boxes
+
+    if args.max_boxes is not None and args.max_boxes < 1:
+        raise InputError(f"--max-boxes: expected a positive number of pieces, got {args.max_boxes}")
+    return parse_boxes(args.boxes) if args.boxes else None
 
 
 def _set_values(sets) -> dict:

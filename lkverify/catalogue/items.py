@@ -193,8 +193,13 @@ class Theorem(Item):
         return self.system.parameters
 
     def run(self, values: Mapping[str, object] | None = None, *, budget: float | None = None,
-            progress: Callable[[str], None] | None = None) -> Report:
+            progress: Callable[[str], None] | None = None, box=None, max_boxes: int | None = None):
         """Check the hypotheses (at the given values, else the paper's defaults), the claims and the chain.
+
+        With ``box`` (a :class:`~lkverify.declare.boxes.ParameterBox` or a mapping name → (lo, hi)),
+        the chain is checked for every point of the box and split until it closes
+        (:func:`lkverify.catalogue.boxrun.run_over_box`); the result is a
+        :class:`~lkverify.catalogue.boxrun.BoxReport`.
 
         Identity claims are checked with the *given* values substituted and every
         other parameter left symbolic, so an ``exact`` identity holds for all of them.
@@ -212,6 +217,11 @@ class Theorem(Item):
         """
         from ..options import Budget, Deadline, work_limits
 
+        if box is not None:
+            from .boxrun import DEFAULT_MAX_BOXES, run_over_box
+
+            return run_over_box(self, values or {}, box, budget=budget, progress=progress,
+                                max_boxes=DEFAULT_MAX_BOXES if max_boxes is None else max_boxes)
         with work_limits():
             cap = Deadline(Budget.of(budget).seconds, cap=True)
             return self._run(values or {}, cap, progress or (lambda msg: None))
@@ -266,17 +276,25 @@ class Theorem(Item):
 
     def _statements(self, given, everything, cap, progress) -> tuple[list, list]:
         """The hypotheses at every value, the claims at the given ones: (results, details of differences)."""
-        from ..options import Deadline
-
         P = self.parameters
         results: list[Result] = []
         progress(f"{self.qualified_name}: hypotheses")
         sub_all = P.substitution(everything)
-        floated_all, floated_given = P.float_symbols(everything), P.float_symbols(given)
+        floated_all = P.float_symbols(everything)
         for h in self.hypotheses:
             res, cut = _capped(cap, lambda: h.evaluate(sub_all, budget=None))
             results.append(Result("hypothesis", h.name, Status.UNDECIDED, None, _cut_text(cap, cut, "hypothesis"))
                            if cut else _not_exact_if_floats(res, _symbols_of(h), floated_all))
+        claims, details = self.claim_results(given, cap, progress)
+        return results + claims, details
+
+    def claim_results(self, given, cap, progress) -> tuple[list, list]:
+        """The identity claims with the given values substituted, every other parameter symbolic."""
+        from ..options import Deadline
+
+        P = self.parameters
+        results: list[Result] = []
+        floated_given = P.float_symbols(given)
         details = []
         sub_given = P.substitution(given)
         every_claim = (*self.claims, *self.printed)

@@ -187,6 +187,7 @@ class ChainResult:
     constants: Mapping
     rhs: object = None
     seconds: float = 0.0
+    box_used: bool = False  # a rule's result depends on the ends of the parameter box (a template over it)
 
     @property
     def rule(self) -> str:
@@ -356,14 +357,21 @@ class TermwiseBound:
         return out
 
     # -- checking ------------------------------------------------------------------------
-    def check(self, values: Mapping, *, budget=None, search: bool = True) -> ChainResult:
-        """Check every term bound and the sum at resolved parameter values."""
+    def check(self, values: Mapping, *, budget=None, search: bool = True,
+              parameter_box: Mapping | None = None) -> ChainResult:
+        """Check every term bound and the sum at resolved parameter values.
+
+        ``parameter_box`` (symbol → (lo, hi)): the values hold these symbols for boxed
+        parameters (:mod:`lkverify.certify.boxes`); what is proved then holds at every point
+        of the box, template suprema are taken over the chart × the box, and the witness
+        searches run at the box's centre (a witness there refutes the step for the box).
+        """
         start = _time.perf_counter()
         measures = {m.name: m for m in self.measures}
         from ...options import Budget
 
         deadline = Budget.of(budget).deadline() if budget is not None else None
-        ctx = Context(self.system, values, measures, self.region, budget=deadline)
+        ctx = Context(self.system, values, measures, self.region, budget=deadline, parameter_box=parameter_box)
         ctx.constants = self.named_constants(values)
         terms = self.lhs_terms()
         by_label = {}
@@ -414,7 +422,8 @@ class TermwiseBound:
             bad = [r for r in results if r.status is worst]
             detail = f"{len(bad)} of {len(results)} term bounds {worst}: " + "; ".join(
                 f"{r.statement}: {r.detail}" for r in bad[:3])
-        return ChainResult(self.name, status, detail, tuple(results), constants, rhs, _time.perf_counter() - start)
+        return ChainResult(self.name, status, detail, tuple(results), constants, rhs, _time.perf_counter() - start,
+                           box_used=ctx.box_used)
 
     def _check_term(self, tb: TermBound, expr, statement, ctx: Context, constants: dict, search: bool) -> TermResult:
         direction = self.direction
@@ -472,7 +481,8 @@ class TermwiseBound:
             ctx.constants = {k: v for k, v in (saved or {}).items() if str(k) not in names}
             generic = ctx.at(_put(tb.bound, keep))
             ctx.constants = saved
-            outcome = self._witness(self._signed_terms(tb, ctx), generic, ctx)
+            at, where = _search_point(ctx)
+            outcome = self._witness(self._signed_terms(tb, at), sympy.sympify(generic).xreplace(_rationals(ctx)), at)
             witness = None if outcome is None else outcome.witness
         if witness is not None:
             from .rules import Printed
@@ -480,8 +490,8 @@ class TermwiseBound:
             terms = ", ".join(f"{k} = {v:.4g}" for k, v in witness.terms.items() if isinstance(v, float))
             why = "" if isinstance(tb.rule, Printed) else f"; the rule's check: {detail}"
             return TermResult(tb.terms, statement, Status.FAILED,
-                              f"refuted: {witness.text()}" + (f"; at the witness: {terms}" if terms else "") + why,
-                              rule, tuple(apps), witness, bound)
+                              f"refuted{where}: {witness.text()}" + (f"; at the witness: {terms}" if terms else "")
+                              + why, rule, tuple(apps), witness, bound)
         if outcome is None:
             searched = "no witness search (search=False)" if not search else "no witness search (outside its family)"
         elif not outcome.complete:
@@ -513,11 +523,13 @@ class TermwiseBound:
             return
         used = sympy.sympify(stated).free_symbols  # only the measures the bound is written in: each costs a model
         measures = [m for m in self.measures if m.symbol in used]
-        outcome = self._witness(self._signed_terms(tb, ctx), stated, ctx, measures=measures, **CROSS_EXAMINATION)
+        at, where = _search_point(ctx)  # over a box: at its centre (the bound is proved for every point)
+        outcome = self._witness(self._signed_terms(tb, at), sympy.sympify(stated).xreplace(_rationals(ctx)), at,
+                                measures=measures, **CROSS_EXAMINATION)
         if outcome is not None and outcome.witness is not None:
             raise RuleSoundnessError(
                 f"the rule {rule!r} proved {self.name}: {statement} ({status.value}), but the witness "
-                f"{outcome.witness.text()} refutes it (rechecked in interval arithmetic); a bug of that rule",
+                f"{outcome.witness.text()}{where} refutes it (rechecked in interval arithmetic); a bug of that rule",
                 rule=rule, witness=outcome.witness)
 
     def _witness(self, expr, stated, ctx: Context, measures=None, **limits):
@@ -543,6 +555,20 @@ class TermwiseBound:
                                 **limits, **({} if self.witness_time is None else {"time": self.witness_time}))
         except InputError:
             return None
+
+
+def _rationals(ctx: Context) -> dict:
+    """The boxed symbols → the box's centre (empty without a parameter box)."""
+    return ctx.box_center()
+
+
+def _search_point(ctx: Context):
+    """(context, text): where the witness searches run — the context itself, or its box's centre."""
+    if not ctx.parameter_box:
+        return ctx, ""
+    centre = ctx.box_center()
+    return ctx.at_point(centre), " at the centre " + ", ".join(f"{s_} = {v}" for s_, v in centre.items()) + \
+        " of the parameter box"
 
 
 def lyapunov_steps(functional, system, lower, upper, vdot, measures, *, region=None, definitions=None,

@@ -71,8 +71,14 @@ class Decay:
     descriptions: Mapping = dataclasses.field(default_factory=dict)
     paper: Mapping = dataclasses.field(default_factory=dict)
 
-    def model(self, steps: Mapping, values: Mapping):
-        """The DecayModel of the checked steps (``steps``: role → (TermwiseBound, ChainResult))."""
+    def model(self, steps: Mapping, values: Mapping, parameter_box: Mapping | None = None):
+        """The DecayModel of the checked steps (``steps``: role → (TermwiseBound, ChainResult)).
+
+        ``parameter_box`` (boxed symbol → (lo, hi)): the values hold these symbols; the
+        steps' right-hand sides must already be uniform over the box
+        (:func:`lkverify.certify.boxes.uniform_bound`), the history factors κ are replaced by
+        their suprema and the region's bounds by their infima over the box.
+        """
         from ..decay import DecayModel
 
         lower, upper, vdot = (steps[r] for r in ("lower", "upper", "vdot"))
@@ -89,13 +95,26 @@ class Decay:
         from ...declare.parameters import apply_substitution
 
         hist = {measures[k].symbol: apply_substitution(sympy.sympify(v), sub) for k, v in self.history_variables.items()}
+        if parameter_box:
+            from ..boxes import _end_of
+
+            from ...errors import UnsupportedInput
+
+            hist = {k: _end_of(v, parameter_box, "upper") for k, v in hist.items()}
+            points = {measures[k].symbol for k in self.point_variables}
+            moving = [str(k) for k, v in box.items() if k in points and sympy.sympify(v).free_symbols & set(parameter_box)]
+            if moving:  # the invariance argument needs the point bounds themselves, not an enclosure of them
+                raise UnsupportedInput(f"the region's bounds on {', '.join(moving)} depend on a boxed parameter; "
+                                       f"fix them per box")
+            # a derived bound (a window norm ≤ τ^{1/p}·δ): the model's box must contain it at every point
+            box = {k: _end_of(v, parameter_box, "upper") for k, v in box.items()}
         return DecayModel(claim.name, variables, box, lower[1].rhs, upper[1].rhs, vdot[1].rhs, sympy.sympify(self.p),
                           tuple(measures[k].symbol for k in self.point_variables), hist,
                           {k: measures[v].symbol for k, v in self.outputs.items()}, self.rate_name,
                           derivation="the checked bound steps V ≥ L, V ≤ U, V̇ ≤ W")
 
     def certify(self, steps: Mapping, values: Mapping, *, budget=None, progress=None, claimed: Mapping | None = None,
-                region: Region | None = None):
+                region: Region | None = None, parameter_box: Mapping | None = None):
         """(results, status, detail): the certified decay of the checked steps, or why not.
 
         ``claimed``: the constants a proof states (``c_tilde``, ``delta_tilde`` and ``l_<measure>``)
@@ -107,7 +126,10 @@ class Decay:
         if region is not None:
             role, (step, res) = "vdot", steps["vdot"]
             steps = {**steps, role: (dataclasses.replace(step, region=region), res)}
-        model = self.model(steps, values)
+        try:
+            model = self.model(steps, values, parameter_box)
+        except UnsupportedInput as exc:
+            return [], Status.UNDECIDED, str(exc)
         bad = [str(v) for v in model.region.values() if not sympy.sympify(v).is_number]
         if bad:
             return [], Status.UNDECIDED, f"the region's bounds have no value ({', '.join(bad)}); set them"

@@ -56,10 +56,28 @@ class Context:
     region: Region | None = None
     budget: object = None
     constants: Mapping | None = None
+    parameter_box: Mapping | None = None  # boxed parameter symbol → (lo, hi): the values hold these symbols
 
     def __post_init__(self):
         self.sub = self.system.parameters.substitution(self.values)
         self.certified = {}  # constants certified inside norm trees: name → (value, info)
+        self.box_used = False  # a rule took a supremum over the parameter box (its result depends on the ends)
+
+    def at_point(self, point: Mapping) -> "Context":
+        """This context at one point of the parameter box (boxed symbol → value): numeric values again."""
+        rep = {s_: sympy.Rational(v) for s_, v in point.items()}
+        values = type(self.values)({k: (v.xreplace(rep) if isinstance(v, (sympy.Basic, sympy.MatrixBase)) else v)
+                                    for k, v in self.values.items()})
+        if hasattr(self.values, "from_float"):
+            values.from_float = self.values.from_float
+        ctx = Context(self.system, values, self.measures, self.region, self.budget,
+                      None if self.constants is None else {k: sympy.sympify(v).xreplace(rep)
+                                                           for k, v in self.constants.items()})
+        return ctx
+
+    def box_center(self) -> dict:
+        """The centre of the parameter box (boxed symbol → exact value); empty without a box."""
+        return {s_: (sympy.Rational(lo) + sympy.Rational(hi)) / 2 for s_, (lo, hi) in (self.parameter_box or {}).items()}
 
     def seconds_left(self, default: float | None = None) -> float | None:
         """Wall-clock seconds for one certification: what is left of the user's budget, at most ``default``.

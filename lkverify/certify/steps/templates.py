@@ -333,6 +333,13 @@ class Template(Rule):
             return Application(self.name, None, tuple(conds) + (_cond("the ratio is well defined", False, str(exc)),))
         if any(not c.status.is_proof for c in conds):
             return Application(self.name, None, tuple(conds))
+        boxed = {s_: ctx.parameter_box[s_] for q in qs for s_ in sympy.sympify(q).free_symbols
+                 if s_ in (ctx.parameter_box or {})}
+        if boxed:  # a supremum over the chart × the parameter box: one κ for every point of the box
+            box = {**box, **boxed}
+            ctx.box_used = True
+            conds.append(_cond("κ is the supremum over the chart × the parameter box ("
+                               + ", ".join(f"{s_} ∈ [{lo}, {hi}]" for s_, (lo, hi) in boxed.items()) + ")", True, ""))
         res = None
         for q in qs:
             r = _sup_of_ratio(q, box, ctx)

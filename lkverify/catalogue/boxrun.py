@@ -1,0 +1,508 @@
+"""A theorem over a box of parameters: the chain decided for every point, split until it closes.
+
+:func:`run_over_box` checks a :class:`~lkverify.catalogue.items.Theorem` for every point of a
+:class:`~lkverify.declare.boxes.ParameterBox` (the other parameters at the given values or
+the paper's defaults, the proof's choices fixed per box):
+
+* **hypotheses** — each margin enclosed over the box (:func:`lkverify.certify.boxes.margin_over_box`):
+  held on the whole box (``certified``), or failed at a corner or the centre (that point is
+  reported), or undecided (the box is split);
+* **identities** — checked with the boxed parameters symbolic, so an ``exact`` identity holds
+  for every value (the report says so);
+* **bound steps** — checked with each boxed parameter a symbol of its interval's sign
+  (:func:`lkverify.certify.boxes.box_symbol`): a proved step holds at every point of the box;
+  template suprema are taken over the chart × the box; the witness searches run at the centre;
+* **decay** — the steps' right-hand sides made uniform over the box, coefficient by
+  coefficient (:func:`lkverify.certify.boxes.uniform_bound`), then certified as at a point: one
+  set of constants (c̃, δ̃, the envelope) for every point of the box.
+
+A box that does not close is split in two along its widest interval (relative to the
+whole box), breadth first, until every piece is established, a point with a failing link is
+found (the run stops there and reports it), or the work limit ``max_boxes`` (pieces
+checked; deterministic, not a wall clock) is reached, the rest ``undecided``.
+
+Examples
+--------
+``x' = −kx``, ``V = x²/2``, hypothesis k > 0: established on k ∈ [1/2, 2]; on k ∈ [−1, 1]
+the hypothesis fails at the corner k = −1:
+
+>>> from lkverify import Parameters, Vector, System, Equation, Functional, Term, t, DerivativeClaim, Hypothesis
+>>> from lkverify.catalogue.items import Theorem
+>>> P = Parameters(); k = P.scalar("k", default=1); x = Vector("x", 1)
+>>> sys = System([Equation(x, [Term(-k * x(t)[0])])], parameters=P)
+>>> V = Functional([Term(x(t)[0] ** 2 / 2)])
+>>> th = Theorem("demo", system=sys, functional=V, hypotheses=[Hypothesis("k > 0", k)],
+...              claims=[DerivativeClaim("Vdot", V, sys, [Term(-k * x(t)[0] ** 2)])])
+>>> rep = th.run(box={"k": ("-1", "1")})
+>>> rep.status.value, rep.failing[0].point
+('failed', {'k': -1})
+>>> th.run(box={"k": ("1/2", "2")}).pieces[0].status.value     # no bound steps: not established
+'undecided'
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Callable, Mapping
+
+import sympy
+
+from ..certify.boxes import box_symbol, margin_over_box, uniform_bound
+from ..declare.boxes import ParameterBox
+from ..declare.parameters import ParameterKind, ResolvedValues, apply_substitution
+from ..errors import InputError, UnsupportedInput
+from ..report.results import Report, Result
+from ..status import Label, Status
+from .links import Link, theorem_verdict
+
+__all__ = ["BoxPiece", "BoxReport", "BoxStatus", "DEFAULT_MAX_BOXES", "FailingPoint", "run_over_box"]
+
+#: pieces checked at most by one run over a box (the work limit of the subdivision)
+DEFAULT_MAX_BOXES = 16
+
+#: the region of the decay is a choice of the proof: over a box it is tried as stated, then shrunk by these
+#: factors (V̇ ≤ W proved on a region holds on every smaller one); the first that closes is reported
+REGION_FACTORS = (1, sympy.Rational(1, 2), sympy.Rational(1, 4), sympy.Rational(1, 8))
+
+_SCALARS = (ParameterKind.REAL, ParameterKind.POSITIVE, ParameterKind.NONNEGATIVE, ParameterKind.DELAY)
+
+
+class BoxStatus(Label):
+    """What a run over a box found for a piece (or the whole box)."""
+
+    ESTABLISHED = "established"   # the chain holds at every point of the piece
+    FAILED = "failed"             # a point of the piece where a link fails was found
+    UNDECIDED = "undecided"       # neither, within the work limit
+
+
+@dataclasses.dataclass(frozen=True)
+class FailingPoint:
+    """A point of the box where a link of the chain fails, with the link and why."""
+
+    point: dict
+    link: str
+    detail: str
+
+    def to_json(self) -> dict:
+        return {"point": {k: str(v) for k, v in self.point.items()}, "link": self.link, "detail": self.detail}
+
+
+@dataclasses.dataclass(frozen=True)
+class BoxPiece:
+    """One piece of the subdivision: its box, status, the chain's report on it."""
+
+    box: ParameterBox
+    status: BoxStatus
+    report: Report | None
+    failing: FailingPoint | None = None
+    note: str = ""
+    choices: dict = dataclasses.field(default_factory=dict)  # the proof's choices the chain was checked at
+
+    @property
+    def verdict(self) -> str:
+        return self.report.verdict if self.report is not None else self.note
+
+    def to_json(self) -> dict:
+        return {"box": self.box.to_json(), "status": self.status.value, "verdict": self.verdict,
+                "choices": dict(self.choices),
+                "failing": None if self.failing is None else self.failing.to_json(),
+                "chain": [link.to_json() for link in (self.report.chain if self.report else ())]}
+
+
+@dataclasses.dataclass(frozen=True)
+class BoxReport:
+    """A theorem over a box: the pieces, the proved part and the first failing points.
+
+    Attributes
+    ----------
+    item : str
+    parameters : dict
+        The fixed parameters shown (the boxed ones as intervals).
+    box : ParameterBox
+    pieces : tuple of BoxPiece
+        The subdivision's leaves, in the order they were decided.
+    checked : int
+        Pieces whose chain was run (the work, at most ``max_boxes``).
+    max_boxes : int
+    """
+
+    item: str
+    parameters: dict
+    box: ParameterBox
+    pieces: tuple
+    checked: int
+    max_boxes: int
+
+    @property
+    def proved(self) -> tuple:
+        """The established pieces (their union is the proved part)."""
+        return tuple(p for p in self.pieces if p.status is BoxStatus.ESTABLISHED)
+
+    @property
+    def proved_fraction(self) -> sympy.Rational:
+        """The measure of the proved part as a fraction of the box's (exact)."""
+        return sum((p.box.fraction_of(self.box) for p in self.proved), sympy.S.Zero)
+
+    @property
+    def failing(self) -> tuple:
+        return tuple(p.failing for p in self.pieces if p.failing is not None)
+
+    @property
+    def status(self) -> BoxStatus:
+        if self.failing:
+            return BoxStatus.FAILED
+        if self.pieces and all(p.status is BoxStatus.ESTABLISHED for p in self.pieces):
+            return BoxStatus.ESTABLISHED
+        return BoxStatus.UNDECIDED
+
+    @property
+    def verdict(self) -> str:
+        n, frac = len(self.pieces), self.proved_fraction
+        if self.status is BoxStatus.ESTABLISHED:
+            first = self.pieces[0].report
+            tail = "" if first is None else "; " + first.verdict
+            return (f"established for every point of {self.box}" + (f" ({n} pieces)" if n > 1 else "") + tail)
+        if self.status is BoxStatus.FAILED:
+            f = self.failing[0]
+            where = ", ".join(f"{k} = {v}" for k, v in f.point.items())
+            return (f"failed at the point {where} of the box: {f.link} ({f.detail}); proved on "
+                    f"{float(frac):.1%} of the box before it was found")
+        undecided = [p for p in self.pieces if p.status is BoxStatus.UNDECIDED]
+        why = undecided[0].verdict if undecided else ""
+        return (f"undecided: established on {len(self.proved)} of {n} pieces ({float(frac):.1%} of the box) within "
+                f"the work limit of {self.max_boxes} pieces; first undecided piece {undecided[0].box}: {why}"
+                if undecided else "undecided")
+
+    @property
+    def holds(self) -> bool:
+        return self.status is BoxStatus.ESTABLISHED
+
+    @property
+    def exit_code(self) -> int:
+        return 0 if self.holds else 1
+
+    @property
+    def results(self) -> tuple:
+        """The results of the first piece's chain (for code that reads a report's rows)."""
+        return self.pieces[0].report.results if self.pieces and self.pieces[0].report else ()
+
+    def to_json(self) -> dict:
+        return {"item": self.item, "parameters": dict(self.parameters), "box": self.box.to_json(),
+                "status": self.status.value, "verdict": self.verdict, "proved_fraction": str(self.proved_fraction),
+                "checked": self.checked, "max_boxes": self.max_boxes,
+                "pieces": [p.to_json() for p in self.pieces],
+                "failing": [f.to_json() for f in self.failing],
+                "first": None if not self.pieces or self.pieces[0].report is None else self.pieces[0].report.to_json()}
+
+    def as_text(self) -> str:
+        lines = [f"{self.item} over the box {self.box}"]
+        if self.parameters:
+            lines.append("  parameters: " + ", ".join(f"{k}={v}" for k, v in self.parameters.items()))
+        lines.append(f"  pieces: {len(self.pieces)} (checked {self.checked}, limit {self.max_boxes}); proved "
+                     f"{len(self.proved)}, {float(self.proved_fraction):.1%} of the box")
+        for p in self.pieces:
+            lines.append(f"    {p.status.value:<11}  {p.box}")
+        for f in self.failing:
+            lines.append(f"  failing point: {', '.join(f'{k} = {v}' for k, v in f.point.items())}: {f.link}: {f.detail}")
+        show = next((p for p in self.pieces if p.status is not BoxStatus.ESTABLISHED and p.report is not None),
+                    self.pieces[0] if self.pieces else None)
+        if show is not None and show.report is not None:
+            lines.append("")
+            lines.append(f"  the chain on {show.box}:")
+            lines.extend("  " + line for line in show.report.as_text().splitlines()[1:])
+        lines.append(f"  verdict: {self.verdict}")
+        return "\n".join(lines)
+
+
+def _validated(theorem, values: Mapping, box) -> ParameterBox:
+    box = box if isinstance(box, ParameterBox) else ParameterBox(box)
+    P = theorem.parameters
+    for name, (lo, hi) in box.bounds.items():
+        if name not in P.names:
+            import difflib
+
+            close = difflib.get_close_matches(name, P.names, n=3)
+            raise InputError(f"--box {name}: no such parameter of {theorem.qualified_name}"
+                             + (f"; did you mean {', '.join(close)}?" if close else f"; known: {', '.join(P.names)}"))
+        if P[name].kind not in _SCALARS:
+            raise InputError(f"--box {name}: expected a scalar parameter, got a {P[name].kind.value}; a box has "
+                             f"intervals of scalars (fix {name} with --set)")
+        if name in values:
+            raise InputError(f"--box {name}: {name} is also given with --set; give it one value or one interval")
+        for end in (lo, hi):
+            P[name].check(end)  # each end admissible (a scalar's admissible set is an interval)
+    return box
+
+
+def run_over_box(theorem, values: Mapping, box, *, budget: float | None = None,
+                 progress: Callable[[str], None] | None = None, max_boxes: int = DEFAULT_MAX_BOXES) -> BoxReport:
+    """The chain of ``theorem`` for every point of ``box``, split until it closes (see the module).
+
+    Parameters
+    ----------
+    theorem : Theorem
+    values : mapping
+        The fixed parameters (the rest at the paper's defaults).
+    box : ParameterBox or mapping name → (lo, hi)
+    budget : float, optional
+        The caller's wall-clock cap for each piece's chain (what it cuts is ``undecided``).
+    progress : callable, optional
+    max_boxes : int
+        The work limit: pieces whose chain is run.
+
+    Raises
+    ------
+    InputError
+        An unknown or non-scalar boxed name, a name both set and boxed, an inadmissible end.
+    """
+    from ..options import Budget, Deadline, work_limits
+
+    if isinstance(max_boxes, bool) or not isinstance(max_boxes, int) or max_boxes < 1:
+        raise InputError(f"max_boxes: expected a positive integer, got {max_boxes!r}")
+    say = progress or (lambda msg: None)
+    box = _validated(theorem, values, box)
+    theorem.parameters.resolve(values, use_defaults=True)  # the fixed values are admissible
+    state = _State(theorem, dict(values))
+    queue, leaves, checked = [(box, None)], [], 0
+    with work_limits():
+        while queue:
+            piece_box, hint = queue.pop(0)
+            if checked >= max_boxes:
+                leaves.append(BoxPiece(piece_box, BoxStatus.UNDECIDED, None,
+                                       note=f"not checked: the work limit of {max_boxes} pieces was reached"))
+                continue
+            checked += 1
+            say(f"{theorem.qualified_name}: piece {checked} {piece_box}")
+            cap = Deadline(Budget.of(budget).seconds, cap=True)
+            piece = state.piece(piece_box, cap, say, hint)
+            if piece.status is BoxStatus.UNDECIDED and not piece_box.is_point \
+                    and checked + len(queue) + 2 <= max_boxes and not piece.note:
+                queue.extend((half, piece.choices or hint) for half in piece_box.split(piece_box.widest(relative_to=box)))
+                continue
+            leaves.append(piece)
+            if piece.status is BoxStatus.FAILED:
+                leaves.extend(BoxPiece(b, BoxStatus.UNDECIDED, None, note="not checked: a failing point was found")
+                              for b, _ in queue)
+                break
+    shown = {**{k: v for k, v in theorem.shown(theorem.parameters.resolve(
+        {**state.choices_at(box), **values}, use_defaults=True)).items() if k not in box.names},
+             **{n: f"[{lo}, {hi}]" for n, (lo, hi) in box.bounds.items()}}
+    return BoxReport(theorem.qualified_name, shown, box, tuple(leaves), checked, max_boxes)
+
+
+class _State:
+    """What the pieces of one run share: the identity results, the step results per sign pattern."""
+
+    def __init__(self, theorem, values: dict):
+        self.theorem, self.values = theorem, values
+        self.claims = None
+        self.steps: dict = {}
+        self.searched: dict = {}  # the tightest corner → the choices the constants job found there
+
+    def choices_at(self, box: ParameterBox) -> dict:
+        """The proof's choices at the box's centre (fixed for the box)."""
+        return self.theorem.chosen({**box.center(), **self.values})
+
+    def _values(self, box: ParameterBox, chosen: Mapping):
+        """(given, everything with the boxed symbols, intervals, fixed point values) for a piece and choices."""
+        P = self.theorem.parameters
+        fixed = {n: lo for n, (lo, hi) in box.bounds.items() if lo == hi}
+        moving = {n: b for n, b in box.bounds.items() if b[0] != b[1]}
+        chosen = {k: v for k, v in chosen.items() if k not in box.names and k not in self.values}
+        given = P.resolve({**self.values, **fixed}, use_defaults=False)
+        everything = P.resolve({**chosen, **self.values, **fixed}, use_defaults=True)
+        symbols = {n: box_symbol(n, b, positive=P[n].kind in (ParameterKind.POSITIVE, ParameterKind.DELAY),
+                                 nonnegative=P[n].kind is ParameterKind.NONNEGATIVE) for n, b in moving.items()}
+        sym_values = ResolvedValues({**everything, **symbols})
+        sym_values.from_float = frozenset(getattr(everything, "from_float", ())) | (box.from_float & set(box.names))
+        given.from_float = frozenset(getattr(given, "from_float", ())) | (box.from_float & set(fixed))
+        return given, sym_values, {symbols[n]: b for n, b in moving.items()}, fixed
+
+    def piece(self, box: ParameterBox, cap, say, hint: Mapping | None = None) -> BoxPiece:
+        """The chain on one piece: hypotheses over it, the identities, then the steps and the decay at the
+        documented choices, the choices that closed the parent piece (``hint``), and the choices the
+        constants job finds at the piece's tightest corner, in that order, until one closes."""
+        from .items import _not_exact_if_floats, _symbols_of
+
+        th, P = self.theorem, self.theorem.parameters
+        documented = self.choices_at(box)
+        given, sym_values, intervals, fixed = self._values(box, documented)
+        floated = P.float_symbols(sym_values)
+        sub = P.substitution(sym_values)
+        results: list[Result] = []
+        say(f"{th.qualified_name}: hypotheses over {box}")
+        failing, margins = None, []
+        for h in th.hypotheses:
+            margin = apply_substitution(sympy.sympify(h.margin), sub)
+            margins.append(margin)
+            status, holds, detail, point = margin_over_box(margin, intervals, strict=h.strict)
+            if status is None:  # free of the box: as at a point
+                res = h.evaluate(sub, budget=None)
+            else:
+                st = Status.FAILED if holds is False else status
+                res = Result("hypothesis", h.name, st, None, f"{h.reference + ': ' if h.reference else ''}{detail}")
+                if holds is False and failing is None:
+                    failing = FailingPoint({**{str(s): v for s, v in point.items()}, **fixed},
+                                           f"hypothesis {h.name}", detail)
+            results.append(_not_exact_if_floats(res, _symbols_of(h), floated))
+        if failing is not None:
+            links = th.chain(results, steps={}, decay=None, cut={st.role: "not checked: a hypothesis fails"
+                                                                for st in th.steps})
+            report = Report(th.qualified_name, {}, tuple(results), theorem_verdict(links), (), links)
+            return BoxPiece(box, BoxStatus.FAILED, report, failing)
+        if not all(r.status.is_proof for r in results):  # a margin not decided on this piece: split it
+            links = th.chain(results, steps={}, decay=None, cut={st.role: "not checked: a hypothesis is undecided "
+                                                                "on this piece" for st in th.steps})
+            report = Report(th.qualified_name, {}, tuple(results), theorem_verdict(links), (), links)
+            return BoxPiece(box, BoxStatus.UNDECIDED, report)
+        if self.claims is None:
+            self.claims = th.claim_results(given, cap, say)
+        claims, details = self.claims
+        moving = [str(s_) for s_ in intervals]
+        note = f" (with {', '.join(moving)} symbolic: for every value)" if moving else ""
+        results += [dataclasses.replace(r, detail=r.detail + note) if r.status is Status.EXACT else r for r in claims]
+        tried, at = [], None
+        for label, chosen in self._candidates(box, documented, hint, margins, intervals, fixed, say):
+            if chosen is None or chosen in tried:
+                continue
+            tried.append(chosen)
+            _, sym_values, _, _ = self._values(box, chosen)
+            rows, checked, cut, failing, decay = self._chain_at(box, sym_values, intervals, fixed, cap, say)
+            at = label
+            if failing is not None or (decay is not None and decay.status.is_proof) or not checked:
+                break
+        links = th.chain(results + rows, steps=checked, decay=decay, cut=cut)
+        verdict = th._verdict(results + rows, {}, None, checked, decay, cut=cut, at=f"every point of {box}")
+        shown = {k: str(v) for k, v in tried[-1].items()} if tried else {}
+        report = Report(th.qualified_name, {"choices": f"{at}: " + ", ".join(f"{k} = {v}" for k, v in shown.items())}
+                        if shown else {}, tuple(results + rows), verdict, tuple(details), links)
+        if failing is not None:
+            return BoxPiece(box, BoxStatus.FAILED, report, failing)
+        if verdict.startswith("established"):
+            return BoxPiece(box, BoxStatus.ESTABLISHED, report, choices=dict(shown))
+        if not th.steps:  # nothing a split can change: the theorem has no bound steps
+            return BoxPiece(box, BoxStatus.UNDECIDED, report, note=verdict)
+        return BoxPiece(box, BoxStatus.UNDECIDED, report, choices=dict(shown))
+
+    def _candidates(self, box, documented, hint, margins, intervals, fixed, say):
+        """(label, choices) to try on a piece, the search's only when the earlier ones did not close."""
+        yield "the documented choices", documented
+        if hint:
+            yield "the choices of the enclosing piece", {**documented, **hint}
+        job = self.theorem.constants
+        search = getattr(job, "search_choices", None)
+        free = list(getattr(job, "free", None) or {})
+        if search is None or not getattr(job, "steps", False) or any(k in self.values for k in free):
+            return
+        corner = _tightest_corner(box, margins, intervals, fixed)
+        key = tuple(sorted((k, str(v)) for k, v in corner.items()))
+        if key not in self.searched:
+            say(f"{self.theorem.qualified_name}: searching {', '.join(free)} at the point "
+                + ", ".join(f"{k} = {v}" for k, v in corner.items()))
+            values = self.theorem.parameters.resolve({**documented, **self.values, **corner}, use_defaults=True)
+            values = {k: v for k, v in values.items()}
+            found, _ = search(self.theorem.qualified_name,
+                              self.theorem.parameters.resolve({**{k: v for k, v in documented.items()
+                                                                  if k not in free}, **self.values, **corner},
+                                                              use_defaults=True), progress=say)
+            self.searched[key] = None if found is None else {**documented, **{k: str(v) for k, v in found.items()}}
+        where = ", ".join(f"{k} = {v}" for k, v in corner.items())
+        yield f"the choices found by the search at {where}", self.searched[key]
+
+    def _chain_at(self, box, sym_values, intervals, fixed, cap, say):
+        """(rows, checked, cut, failing, decay link) of the steps and the decay at these values."""
+        from .items import _capped, _cut_text, _not_exact_if_floats, _symbols_of
+
+        th, P = self.theorem, self.theorem.parameters
+        floated = P.float_symbols(sym_values)
+        rows, checked, cut, failing = [], {}, {}, None
+        for step in th.steps:
+            say(f"{th.qualified_name}: {step.name} over {box}")
+            res, how = _capped(cap, lambda: self._step(step, sym_values, intervals, box))
+            if how:
+                cut[step.role] = _cut_text(cap, how)
+                rows.append(Result("bound", step.name, Status.UNDECIDED, None, cut[step.role]))
+                continue
+            if isinstance(res, str):
+                cut[step.role] = res
+                rows.append(Result("bound", step.name, Status.UNDECIDED, None, res))
+                continue
+            rows += [_not_exact_if_floats(r, _symbols_of(step), floated) for r in res.results()]
+            checked[step.role] = (step, res)
+            bad = next((tr for tr in res.terms if tr.status is Status.FAILED and tr.witness is not None), None)
+            if bad is not None and failing is None:
+                centre = {str(s_): (sympy.Rational(lo) + sympy.Rational(hi)) / 2 for s_, (lo, hi) in intervals.items()}
+                failing = FailingPoint({**centre, **fixed}, step.name, f"{bad.statement}: {bad.detail}")
+        decay = None
+        if th.decay is not None and all(r in checked and checked[r][1].status.is_proof
+                                        for r in ("lower", "upper", "vdot")):
+            say(f"{th.qualified_name}: decay over {box}")
+            out = self._decay(checked, sym_values, intervals, cap, say)
+            if not out[0] and not out[1].is_proof:
+                rows.append(Result("region", getattr(th.decay, "link", "decay on the region"), out[1], None, out[2]))
+            rows += out[0]
+            decay = Link(getattr(th.decay, "link", "decay on the region (V̇ ≤ −c̃V^p, envelope)"), out[1], out[2])
+        return rows, checked, cut, failing, decay
+
+    def _step(self, step, sym_values, intervals, box):
+        """The step's ChainResult for every point of the box (cached per sign pattern), or why not (a str)."""
+        pattern = tuple(sorted((str(s), tuple(sorted(s.assumptions0.items()))) for s in intervals))
+        key = (step.role, step.name, pattern, tuple(sorted((k, str(v)) for k, v in sym_values.items())))
+        hit = self.steps.get(key)
+        if hit is not None and not hit.box_used:
+            return hit
+        try:
+            res = step.check(sym_values, parameter_box=intervals)
+        except (InputError, UnsupportedInput, TypeError, ValueError, AttributeError) as exc:
+            return (f"not decided over the box: a rule of this step does not support the boxed parameters "
+                    f"symbolically ({type(exc).__name__}: {str(exc).splitlines()[0][:200]})")
+        if res.status.is_proof and not res.box_used:
+            self.steps[key] = res
+        return res
+
+    def _decay(self, checked, sym_values, intervals, cap, say):
+        """(rows, status, detail) of the decay certified with the steps made uniform over the box."""
+        from .items import _capped, _cut_text
+
+        uniform = {}
+        try:
+            for role, (step, res) in checked.items():
+                variables = {m.symbol for m in step.measures}
+                direction = "lower" if role == "lower" else "upper"
+                uniform[role] = (step, dataclasses.replace(res, rhs=uniform_bound(res.rhs, intervals, variables,
+                                                                                   direction)))
+        except UnsupportedInput as exc:
+            return [], Status.UNDECIDED, f"the steps' bounds cannot be made uniform over the box: {exc}"
+        region = getattr(checked.get("vdot", (None,))[0], "region", None)
+        first = None
+        for factor in REGION_FACTORS if region is not None else (1,):
+            scaled = None if factor == 1 else region.scaled(factor)
+            out, how = _capped(cap, lambda: self.theorem.decay.certify(uniform, sym_values, budget=None, progress=say,
+                                                                        parameter_box=intervals, region=scaled))
+            if how:
+                return [], Status.UNDECIDED, _cut_text(cap, how, "link")
+            rows, status, detail = out
+            if status.is_proof:
+                if factor != 1:
+                    detail = f"on the proof's region scaled by {factor} ({scaled.describe()}): {detail}"
+                return rows, status, detail
+            first = first or out
+        return first
+
+
+def _tightest_corner(box: ParameterBox, margins, intervals: Mapping, fixed: Mapping) -> dict:
+    """The corner of the piece where the hypotheses' margins are smallest (their sum, exact): where the
+    proof's choices are most constrained; the search runs there (a heuristic: what is proved does not
+    depend on it)."""
+    by_name = {str(s_): s_ for s_ in intervals}
+    best, best_value = None, None
+    for corner in box.corners():
+        rep = {by_name[k]: v for k, v in corner.items() if k in by_name}
+        total = sum((sympy.sympify(m).xreplace(rep) for m in margins), sympy.S.Zero)
+        try:
+            value = float(total)
+        except (TypeError, ValueError):
+            value = 0.0
+        if best is None or value < best_value:
+            best, best_value = corner, value
+    return {**best, **fixed}
