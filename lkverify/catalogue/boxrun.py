@@ -284,8 +284,9 @@ def run_over_box(theorem, values: Mapping, box, *, budget: float | None = None,
                 leaves.extend(BoxPiece(b, BoxStatus.UNDECIDED, None, note="not checked: a failing point was found")
                               for b, _ in queue)
                 break
+    documented = state.choices_at(box)  # the choices are the pieces' own (each piece's report shows them)
     shown = {**{k: v for k, v in theorem.shown(theorem.parameters.resolve(
-        {**state.choices_at(box), **values}, use_defaults=True)).items() if k not in box.names},
+        {**documented, **values}, use_defaults=True)).items() if k not in box.names and k not in documented},
              **{n: f"[{lo}, {hi}]" for n, (lo, hi) in box.bounds.items()}}
     return BoxReport(theorem.qualified_name, shown, box, tuple(leaves), checked, max_boxes)
 
@@ -331,8 +332,19 @@ class _State:
         sub = P.substitution(sym_values)
         results: list[Result] = []
         say(f"{th.qualified_name}: hypotheses over {box}")
-        failing, margins = None, []
+        failing, margins, unsupported = None, [], []
+        boxed = {s_ for n in box.names for s_ in P[n].symbols}
         for h in th.hypotheses:
+            if not hasattr(h, "margin"):  # a matrix or a composite hypothesis: decided at a point only
+                if _symbols_of(h) & boxed:
+                    unsupported.append(h.name)
+                    results.append(Result("hypothesis", h.name, Status.UNDECIDED, None,
+                                          f"not decided over a box: this kind of hypothesis "
+                                          f"({type(h).__name__}) depends on {', '.join(box.names)} and is decided "
+                                          f"at points only; fix the parameter with --set"))
+                else:
+                    results.append(_not_exact_if_floats(h.evaluate(sub, budget=None), _symbols_of(h), floated))
+                continue
             margin = apply_substitution(sympy.sympify(h.margin), sub)
             margins.append(margin)
             status, holds, detail, point = margin_over_box(margin, intervals, strict=h.strict)
@@ -354,7 +366,7 @@ class _State:
             links = th.chain(results, steps={}, decay=None, cut={st.role: "not checked: a hypothesis is undecided "
                                                                 "on this piece" for st in th.steps})
             report = Report(th.qualified_name, {}, tuple(results), theorem_verdict(links), (), links)
-            return BoxPiece(box, BoxStatus.UNDECIDED, report)
+            return BoxPiece(box, BoxStatus.UNDECIDED, report, note=report.verdict if unsupported else "")
         if self.claims is None:
             self.claims = th.claim_results(given, cap, say)
         claims, details = self.claims

@@ -189,3 +189,17 @@ def test_theorem3_box_across_b_tau_equal_a_is_failed_at_a_corner():
     assert rep.status is BoxStatus.FAILED
     point = rep.failing[0].point
     assert point["b"] * point["tau"] >= 0 and "b*tau < a" in rep.failing[0].link
+
+
+def test_a_matrix_hypothesis_on_a_boxed_parameter_is_undecided_not_split_and_one_off_the_box_is_decided():
+    from lkverify import MatrixHypothesis
+
+    on_k = _theorem(hypotheses=[Hypothesis("k > 0", k), MatrixHypothesis("[[2, k], [k, 2]] ≻ 0",
+                                                                         sympy.Matrix([[2, k], [k, 2]]))])
+    rep = on_k.run(box={"k": ("1/2", "1")})
+    assert rep.status is BoxStatus.UNDECIDED and rep.checked == 1      # splitting cannot decide it: not split
+    row = next(r for r in rep.pieces[0].report.results if r.name.startswith("[[2, k]"))
+    assert row.status is Status.UNDECIDED and "decided at points only" in row.detail
+    off = _theorem(hypotheses=[Hypothesis("k > 0", k), MatrixHypothesis("[[2, c], [c, 2]] ≻ 0",
+                                                                        sympy.Matrix([[2, c], [c, 2]]))])
+    assert off.run(box={"k": ("1/2", "1")}).status is BoxStatus.ESTABLISHED

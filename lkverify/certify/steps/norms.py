@@ -232,7 +232,8 @@ def pointwise_constant(pb, measures, ps, k, constant, ctx: Context, same) -> tup
         return None, [_cond(f"the pointwise bound is Σ‖v_i(ξ)‖^{k}", False, f"got {B}; name a constant= to "
                             f"certify a homogeneous bound")]
     from .templates import _homogeneous_sup  # at call time: steps.templates imports steps.rules, which imports this
-    kappa, hconds, info = _homogeneous_sup(B, T, ps, ctx.seconds_left())
+    kappa, hconds, info = _homogeneous_sup(B, T, ps, ctx.seconds_left(), ctx.parameter_box)
+    ctx.box_used = ctx.box_used or bool(ctx.parameter_box)
     if kappa is not None:
         ctx.certified[constant] = (info["certified"], info)
     return kappa, list(hconds)

@@ -28,7 +28,7 @@ TEMPLATE_ENCLOSURE = "taylor"
 _HOMOGENEOUS_CACHE: dict = {}  # (g, T, xs) → a certified (κ, conditions, info): one proof per process
 
 
-def _homogeneous_sup(g, T, xs, seconds: float | None = None):
+def _homogeneous_sup(g, T, xs, seconds: float | None = None, parameters=None):
     """(κ or None, conditions, info): κ ≥ sup g/T over x ≥ 0, x ≠ 0 for g, T homogeneous of one degree.
 
     Homogeneity is checked exactly (g(ρx)/T(ρx) = g(x)/T(x)) and T > 0 on x ≥ 0, x ≠ 0 is
@@ -38,10 +38,12 @@ def _homogeneous_sup(g, T, xs, seconds: float | None = None):
     ``seconds`` is the user's wall-clock cap (None: none).  A certified result is kept for the
     process (the same supremum recurs in several steps of one proof).
     """
-    key = (sympy.sympify(g), sympy.sympify(T), tuple(xs))
+    free = (sympy.sympify(g).free_symbols | sympy.sympify(T).free_symbols) - set(xs)
+    parameters = {s_: b for s_, b in (parameters or {}).items() if s_ in free}  # boxed parameters: sup over them too
+    key = (sympy.sympify(g), sympy.sympify(T), tuple(xs), tuple(sorted(parameters.items(), key=str)))
     if key in _HOMOGENEOUS_CACHE:
         return _HOMOGENEOUS_CACHE[key]
-    out = _homogeneous_sup_uncached(g, T, xs, seconds)
+    out = _homogeneous_sup_uncached(g, T, xs, seconds, parameters)
     if out[0] is not None:
         _HOMOGENEOUS_CACHE[key] = out
     return out
@@ -54,7 +56,7 @@ def _faces(expr, xs, pos):
         yield expr.xreplace({pos[x]: sympy.S.One, **others}), {v: (0, 1) for v in others.values()}
 
 
-def _homogeneous_sup_uncached(g, T, xs, seconds):
+def _homogeneous_sup_uncached(g, T, xs, seconds, parameters=None):
     from ..bounds import sup_bound
     from ...options import Budget
 
@@ -71,6 +73,7 @@ def _homogeneous_sup_uncached(g, T, xs, seconds):
     Tpos = sympy.sympify(T).xreplace(pos)
     worst = None
     for on_face, box in _faces(-Tpos, xs, pos):  # sup(−T) < 0 on every face: T > 0 off 0
+        box = {**box, **(parameters or {})}
         r = sup_bound(on_face, box, accuracy=TEMPLATE_ACCURACY, budget=budget, enclosure=TEMPLATE_ENCLOSURE)
         if r.certified is None or not r.certified < 0:
             ok = False if (r.estimate is not None and r.estimate >= 0) else None
@@ -81,6 +84,7 @@ def _homogeneous_sup_uncached(g, T, xs, seconds):
     conds.append(_cond(f"T = {T} > 0 for x ≥ 0, x ≠ 0 (min on the faces ≥ {-worst:.6g})", True, certified=True))
     best = None
     for on_face, box in _faces(ratio, xs, pos):
+        box = {**box, **(parameters or {})}
         r = sup_bound(on_face, box, accuracy=TEMPLATE_ACCURACY, budget=budget, enclosure=TEMPLATE_ENCLOSURE)
         if r.certified is None or not r.certified < float("inf"):
             conds.append(_cond("κ certified", None, "no finite certified bound on a face", certified=True))
@@ -153,7 +157,9 @@ class Homogeneous(Rule):
             return Application(self.name, None, tuple(conds))
         want_sup = (direction == "upper") == (sign > 0)
         # κ_inf = −sup(−g/T): a certified upper bound of sup(−g/T) is a certified lower bound of inf g/T
-        kappa, hconds, info = _homogeneous_sup(g if want_sup else -g, T, xs, ctx.seconds_left(None))
+        kappa, hconds, info = _homogeneous_sup(g if want_sup else -g, T, xs, ctx.seconds_left(None),
+                                               ctx.parameter_box)
+        ctx.box_used = ctx.box_used or bool(ctx.parameter_box)
         conds += hconds
         if kappa is None:
             return Application(self.name, None, tuple(conds))
