@@ -68,7 +68,11 @@ _SCALARS = (ParameterKind.REAL, ParameterKind.POSITIVE, ParameterKind.NONNEGATIV
 
 
 class BoxStatus(Label):
-    """What a run over a box found for a piece (or the whole box)."""
+    """What a run over a box found for a piece (or the whole box).
+
+    >>> BoxStatus.ESTABLISHED == "established", str(BoxStatus.FAILED)
+    (True, 'failed')
+    """
 
     ESTABLISHED = "established"   # the chain holds at every point of the piece
     FAILED = "failed"             # a point of the piece where a link fails was found
@@ -77,7 +81,11 @@ class BoxStatus(Label):
 
 @dataclasses.dataclass(frozen=True)
 class FailingPoint:
-    """A point of the box where a link of the chain fails, with the link and why."""
+    """A point of the box where a link of the chain fails, with the link and why.
+
+    >>> FailingPoint({"k": -1}, "hypothesis k > 0", "margin -1").to_json()
+    {'point': {'k': '-1'}, 'link': 'hypothesis k > 0', 'detail': 'margin -1'}
+    """
 
     point: dict
     link: str
@@ -89,7 +97,12 @@ class FailingPoint:
 
 @dataclasses.dataclass(frozen=True)
 class BoxPiece:
-    """One piece of the subdivision: its box, status, the chain's report on it."""
+    """One piece of the subdivision: its box, status, the chain's report on it.
+
+    >>> piece = BoxPiece(ParameterBox({"k": (0, 1)}), BoxStatus.UNDECIDED, None, note="not checked")
+    >>> piece.verdict, piece.to_json()["box"]
+    ('not checked', {'k': ['0', '1']})
+    """
 
     box: ParameterBox
     status: BoxStatus
@@ -124,6 +137,15 @@ class BoxReport:
     checked : int
         Pieces whose chain was run (the work, at most ``max_boxes``).
     max_boxes : int
+
+    Examples
+    --------
+    >>> B = ParameterBox({"k": (0, 1)})
+    >>> left, right = B.split()
+    >>> rep = BoxReport("demo", {}, B, (BoxPiece(left, BoxStatus.ESTABLISHED, None),
+    ...                                 BoxPiece(right, BoxStatus.UNDECIDED, None, note="limit")), 3, 3)
+    >>> rep.status.value, rep.proved_fraction, rep.exit_code
+    ('undecided', 1/2, 1)
     """
 
     item: str
@@ -254,6 +276,17 @@ def run_over_box(theorem, values: Mapping, box, *, budget: float | None = None,
     ------
     InputError
         An unknown or non-scalar boxed name, a name both set and boxed, an inadmissible end.
+
+    Examples
+    --------
+    >>> from lkverify import Parameters, Vector, System, Equation, Functional, Term, t, DerivativeClaim, Hypothesis
+    >>> from lkverify.catalogue.items import Theorem
+    >>> P = Parameters(); k = P.scalar("k", default=1); x = Vector("x", 1)
+    >>> sys = System([Equation(x, [Term(-k * x(t)[0])])], parameters=P)
+    >>> th = Theorem("demo", system=sys, hypotheses=[Hypothesis("k > 0", k)])
+    >>> rep = run_over_box(th, {}, {"k": ("1/2", "2")})
+    >>> rep.pieces[0].report.results[0].detail
+    'margin > 0 over the whole box (enclosure [1/2, 2] by rational interval arithmetic)'
     """
     from ..options import Budget, Deadline, work_limits
 

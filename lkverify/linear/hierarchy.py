@@ -230,6 +230,8 @@ class _Sdp:
 
     def solve(self, h: float):
         import cvxpy as cp
+        if not h > 0:  # the functional's shift term is 1/h: no certificate is sought at h ≤ 0
+            return None, "h ≤ 0 (the hierarchy needs a positive delay)", None
         for k, par in enumerate(self.powers):
             par.value = h ** k
         self.hinv.value = 1 / h
