@@ -273,8 +273,8 @@ def _dispatch(args) -> int:
     if args.command in (None, "report"):
         return _report(json_out=getattr(args, "json", False), quiet=args.quiet, jobs=getattr(args, "jobs", None))
     if args.command == "check":
-        values = _set_values(args.sets)
         box = _box(args)
+        values = _set_values(args.sets, box.names if box is not None else ())
         items = find_items(args.item, load_limit=args.load_limit)
         say = _progress(not args.quiet)
         if box is not None:
@@ -334,12 +334,17 @@ def _box(args):
     return parse_boxes(args.boxes) if args.boxes else None
 
 
-def _set_values(sets) -> dict:
-    """``--set NAME=VALUE`` arguments parsed (the messages name ``--set``); admissibility is the item's."""
+def _set_values(sets, box_names=()) -> dict:
+    """``--set NAME=VALUE`` arguments parsed (the messages name ``--set``); admissibility is the item's.
+
+    The names of ``--box`` intervals may appear in the values (``--set "F=diag(h,h,h)" --box h=1/2:1``)."""
+    import sympy
+
+    variables = {"t": _t, "zeta": _zeta, **{n: sympy.Symbol(n) for n in box_names}}
     values = {}
     for text in sets:
         name, value = parse_assignment(text)
-        values[name] = parse_value(value, name=name, option="--set", variables={"t": _t, "zeta": _zeta})
+        values[name] = parse_value(value, name=name, option="--set", variables=variables)
     return values
 
 

@@ -236,24 +236,87 @@ class BoxReport:
         return "\n".join(lines)
 
 
+def _template_names(values: Mapping) -> set:
+    """Names of the free symbols in given values (``F = diag(h,h,h)``): a box may take them as variables."""
+    out = set()
+    for v in values.values():
+        if isinstance(v, (sympy.Basic, sympy.MatrixBase)):
+            out |= {str(s_) for s_ in v.free_symbols}
+    return out
+
+
+def _written(values: Mapping, box: ParameterBox) -> list:
+    """The given values written in the box's variables."""
+    return [k for k, v in values.items() if isinstance(v, (sympy.Basic, sympy.MatrixBase))
+            and {str(s_) for s_ in v.free_symbols} & set(box.names)]
+
+
 def _validated(theorem, values: Mapping, box) -> ParameterBox:
     box = box if isinstance(box, ParameterBox) else ParameterBox(box)
     P = theorem.parameters
+    templates = _template_names(values) - set(P.names)
     for name, (lo, hi) in box.bounds.items():
+        if name in templates:
+            continue
         if name not in P.names:
             import difflib
 
             close = difflib.get_close_matches(name, P.names, n=3)
-            raise InputError(f"--box {name}: no such parameter of {theorem.qualified_name}"
-                             + (f"; did you mean {', '.join(close)}?" if close else f"; known: {', '.join(P.names)}"))
+            raise InputError(f"--box {name}: no such parameter of {theorem.qualified_name}, nor a variable of a "
+                             f"--set value" + (f"; did you mean {', '.join(close)}?" if close else
+                                                f"; known: {', '.join(P.names)}"))
         if P[name].kind not in _SCALARS:
             raise InputError(f"--box {name}: expected a scalar parameter, got a {P[name].kind.value}; a box has "
-                             f"intervals of scalars (fix {name} with --set)")
+                             f"intervals of scalars (fix {name} with --set, or write it in a variable, e.g. --set "
+                             f"\"F=diag(h,h,h)\" --box h=1/2:1)")
         if name in values:
             raise InputError(f"--box {name}: {name} is also given with --set; give it one value or one interval")
         for end in (lo, hi):
             P[name].check(end)  # each end admissible (a scalar's admissible set is an interval)
+    unboxed = sorted(templates - set(box.names))
+    if unboxed:
+        raise InputError(f"--set: the variables {', '.join(unboxed)} have no interval; give each one with --box "
+                         f"NAME=LO:HI")
+    _admissible_over_box(P, values, box)
     return box
+
+
+def _admissible_over_box(P, values: Mapping, box: ParameterBox) -> None:
+    """Each value written in box variables is admissible at every point of the box (else InputError).
+
+    Scalars: the sign their kind needs; positive-definite and diagonal matrices: symmetric, and every
+    leading principal minor > 0 over the box (:func:`lkverify.certify.boxes.margin_over_box`).
+    """
+    symbols = {n: sympy.Symbol(n) for n in box.names}
+    intervals = {symbols[n]: b for n, b in box.bounds.items()}
+    for name, v in values.items():
+        if not isinstance(v, (sympy.Basic, sympy.MatrixBase)) or not v.free_symbols & set(symbols.values()):
+            continue
+        spec = P[name]
+        P[name].check(v.xreplace({symbols[n]: c for n, c in box.center().items()}))  # its shape and kind
+        if spec.kind in _SCALARS:
+            need = {ParameterKind.POSITIVE: True, ParameterKind.DELAY: True, ParameterKind.NONNEGATIVE: False}
+            if spec.kind in need:
+                _, holds, detail, _ = margin_over_box(v, intervals, strict=need[spec.kind])
+                if not holds:
+                    raise InputError(f"{name} = {v}: expected {name} {'>' if need[spec.kind] else '≥'} 0 at every "
+                                     f"point of the box {box}; {detail}")
+            continue
+        if spec.kind not in (ParameterKind.SPD_MATRIX, ParameterKind.DIAGONAL):
+            raise InputError(f"{name} = {v}: a {spec.kind.value} written in box variables is not supported; fix it")
+        M = sympy.Matrix(v)
+        if spec.kind is ParameterKind.DIAGONAL and not M.is_diagonal():
+            raise InputError(f"{name} = {v}: expected a diagonal matrix")
+        if sympy.expand(M - M.T) != sympy.zeros(*M.shape):
+            raise InputError(f"{name} = {v}: expected a symmetric matrix")
+        for k in range(1, M.shape[0] + 1):
+            minor = sympy.factor(M[:k, :k].det())
+            _, holds, detail, _ = margin_over_box(minor, intervals, strict=True)
+            if holds is None and not (minor.free_symbols & set(intervals)):
+                holds = bool(minor > 0)
+            if not holds:
+                raise InputError(f"{name} = {v}: expected a positive-definite matrix at every point of the box "
+                                 f"{box}; its leading {k}×{k} minor {minor}: {detail}")
 
 
 def run_over_box(theorem, values: Mapping, box, *, budget: float | None = None,
@@ -294,8 +357,8 @@ def run_over_box(theorem, values: Mapping, box, *, budget: float | None = None,
         raise InputError(f"max_boxes: expected a positive integer, got {max_boxes!r}")
     say = progress or (lambda msg: None)
     box = _validated(theorem, values, box)
-    theorem.parameters.resolve(values, use_defaults=True)  # the fixed values are admissible
     state = _State(theorem, dict(values))
+    theorem.parameters.resolve(state.point_values(box.center()), use_defaults=True)  # the fixed values admissible
     queue, leaves, checked = [(box, None)], [], 0
     with work_limits():
         while queue:
@@ -319,7 +382,9 @@ def run_over_box(theorem, values: Mapping, box, *, budget: float | None = None,
                 break
     documented = state.choices_at(box)  # the choices are the pieces' own (each piece's report shows them)
     shown = {**{k: v for k, v in theorem.shown(theorem.parameters.resolve(
-        {**documented, **values}, use_defaults=True)).items() if k not in box.names and k not in documented},
+        {**documented, **state.point_values(box.center())}, use_defaults=True)).items()
+        if k not in box.names and k not in documented},
+             **{k: str(v) for k, v in values.items() if k in _written(values, box)},
              **{n: f"[{lo}, {hi}]" for n, (lo, hi) in box.bounds.items()}}
     return BoxReport(theorem.qualified_name, shown, box, tuple(leaves), checked, max_boxes)
 
@@ -333,23 +398,48 @@ class _State:
         self.steps: dict = {}
         self.searched: dict = {}  # the tightest corner → the choices the constants job found there
 
+    def point_values(self, point: Mapping) -> dict:
+        """The given values at one point of the box (name → value; variables of given values substituted)."""
+        names = set(self.theorem.parameters.names)
+        rep = {sympy.Symbol(n): sympy.Rational(v) for n, v in point.items() if n not in names}
+        out = {k: (v.xreplace(rep) if isinstance(v, (sympy.Basic, sympy.MatrixBase)) else v)
+               for k, v in self.values.items()}
+        return {**out, **{n: v for n, v in point.items() if n in names}}
+
     def choices_at(self, box: ParameterBox) -> dict:
         """The proof's choices at the box's centre (fixed for the box)."""
-        return self.theorem.chosen({**box.center(), **self.values})
+        return self.theorem.chosen(self.point_values(box.center()))
 
     def _values(self, box: ParameterBox, chosen: Mapping):
-        """(given, everything with the boxed symbols, intervals, fixed point values) for a piece and choices."""
+        """(given, everything with the boxed symbols, intervals, fixed point values) for a piece and choices.
+
+        A boxed name is a scalar parameter (replaced by its symbol) or a variable of a given value
+        (``F = diag(h,h,h)``: the value is written in the variable's symbol); the values are
+        resolved — defaults and checks — at the piece's centre, then the boxed symbols put in.
+        """
         P = self.theorem.parameters
         fixed = {n: lo for n, (lo, hi) in box.bounds.items() if lo == hi}
         moving = {n: b for n, b in box.bounds.items() if b[0] != b[1]}
+        kinds = {n: P[n].kind if n in P.names else None for n in box.names}
+        symbols = {n: box_symbol(n, b, positive=kinds[n] in (ParameterKind.POSITIVE, ParameterKind.DELAY),
+                                 nonnegative=kinds[n] is ParameterKind.NONNEGATIVE) for n, b in moving.items()}
+        plain = {sympy.Symbol(n): symbols[n] if n in symbols else fixed[n] for n in box.names if kinds[n] is None}
+        centre = {sympy.Symbol(n): c for n, c in box.center().items() if kinds[n] is None}
+        written = {k: v for k, v in self.values.items()
+                   if isinstance(v, (sympy.Basic, sympy.MatrixBase)) and v.free_symbols & set(plain)}
+        at_centre = {**self.values, **{k: v.xreplace(centre) for k, v in written.items()}}
+        scalars_fixed = {n: v for n, v in fixed.items() if kinds[n] is not None}
         chosen = {k: v for k, v in chosen.items() if k not in box.names and k not in self.values}
-        given = P.resolve({**self.values, **fixed}, use_defaults=False)
-        everything = P.resolve({**chosen, **self.values, **fixed}, use_defaults=True)
-        symbols = {n: box_symbol(n, b, positive=P[n].kind in (ParameterKind.POSITIVE, ParameterKind.DELAY),
-                                 nonnegative=P[n].kind is ParameterKind.NONNEGATIVE) for n, b in moving.items()}
-        sym_values = ResolvedValues({**everything, **symbols})
-        sym_values.from_float = frozenset(getattr(everything, "from_float", ())) | (box.from_float & set(box.names))
-        given.from_float = frozenset(getattr(given, "from_float", ())) | (box.from_float & set(fixed))
+        given = P.resolve({**at_centre, **scalars_fixed}, use_defaults=False)
+        everything = P.resolve({**chosen, **at_centre, **scalars_fixed}, use_defaults=True)
+        boxed = {k: sympy.ImmutableMatrix(v.xreplace(plain)) if isinstance(v, sympy.MatrixBase) else v.xreplace(plain)
+                 for k, v in written.items()}
+        for k, v in boxed.items():
+            given[k] = v
+        sym_values = ResolvedValues({**everything, **boxed, **{n: s_ for n, s_ in symbols.items()
+                                                              if kinds[n] is not None}})
+        sym_values.from_float = frozenset(getattr(everything, "from_float", ())) | (box.from_float & set(P.names))
+        given.from_float = frozenset(getattr(given, "from_float", ())) | (box.from_float & set(scalars_fixed))
         return given, sym_values, {symbols[n]: b for n, b in moving.items()}, fixed
 
     def piece(self, box: ParameterBox, cap, say, hint: Mapping | None = None) -> BoxPiece:
@@ -366,7 +456,9 @@ class _State:
         results: list[Result] = []
         say(f"{th.qualified_name}: hypotheses over {box}")
         failing, margins, unsupported = None, [], []
-        boxed = {s_ for n in box.names for s_ in P[n].symbols}
+        written = [k for k, v in self.values.items() if isinstance(v, (sympy.Basic, sympy.MatrixBase))
+                   and {str(s_) for s_ in v.free_symbols} & set(box.names)]
+        boxed = {s_ for n in [*(n for n in box.names if n in P.names), *written] for s_ in P[n].symbols}
         for h in th.hypotheses:
             if not hasattr(h, "margin"):  # a matrix or a composite hypothesis: decided at a point only
                 if _symbols_of(h) & boxed:
@@ -406,13 +498,14 @@ class _State:
         moving = [str(s_) for s_ in intervals]
         note = f" (with {', '.join(moving)} symbolic: for every value)" if moving else ""
         results += [dataclasses.replace(r, detail=r.detail + note) if r.status is Status.EXACT else r for r in claims]
-        tried, at = [], None
-        for label, chosen in self._candidates(box, documented, hint, margins, intervals, fixed, say):
+        tried, at, last = [], None, {}
+        for label, chosen in self._candidates(box, documented, hint, margins, intervals, fixed, say, last):
             if chosen is None or chosen in tried:
                 continue
             tried.append(chosen)
             _, sym_values, _, _ = self._values(box, chosen)
             rows, checked, cut, failing, decay = self._chain_at(box, sym_values, intervals, fixed, cap, say)
+            last.update(checked)
             at = label
             if failing is not None or (decay is not None and decay.status.is_proof) or not checked:
                 break
@@ -429,8 +522,13 @@ class _State:
             return BoxPiece(box, BoxStatus.UNDECIDED, report, note=verdict)
         return BoxPiece(box, BoxStatus.UNDECIDED, report, choices=dict(shown))
 
-    def _candidates(self, box, documented, hint, margins, intervals, fixed, say):
-        """(label, choices) to try on a piece, the search's only when the earlier ones did not close."""
+    def _candidates(self, box, documented, hint, margins, intervals, fixed, say, last):
+        """(label, choices) to try on a piece, the search's only when the earlier ones did not close.
+
+        The search runs at the corner whose steps' right-hand sides are closest to the uniform ones
+        over the piece (``last``: the steps checked at the earlier choices), else at the corner of
+        the smallest hypothesis margins: there the choices must be hardest (a heuristic; what is
+        proved does not depend on it)."""
         yield "the documented choices", documented
         if hint:
             yield "the choices of the enclosing piece", {**documented, **hint}
@@ -439,16 +537,16 @@ class _State:
         free = list(getattr(job, "free", None) or {})
         if search is None or not getattr(job, "steps", False) or any(k in self.values for k in free):
             return
-        corner = _tightest_corner(box, margins, intervals, fixed)
+        corner = _worst_corner(box, last, intervals, fixed) if all(r in last for r in ("lower", "upper", "vdot")) \
+            else None
+        corner = corner or _tightest_corner(box, margins, intervals, fixed)
         key = tuple(sorted((k, str(v)) for k, v in corner.items()))
         if key not in self.searched:
             say(f"{self.theorem.qualified_name}: searching {', '.join(free)} at the point "
                 + ", ".join(f"{k} = {v}" for k, v in corner.items()))
-            values = self.theorem.parameters.resolve({**documented, **self.values, **corner}, use_defaults=True)
-            values = {k: v for k, v in values.items()}
             found, _ = search(self.theorem.qualified_name,
                               self.theorem.parameters.resolve({**{k: v for k, v in documented.items()
-                                                                  if k not in free}, **self.values, **corner},
+                                                                  if k not in free}, **self.point_values(corner)},
                                                               use_defaults=True), progress=say)
             self.searched[key] = None if found is None else {**documented, **{k: str(v) for k, v in found.items()}}
         where = ", ".join(f"{k} = {v}" for k, v in corner.items())
@@ -551,3 +649,34 @@ def _tightest_corner(box: ParameterBox, margins, intervals: Mapping, fixed: Mapp
         if best is None or value < best_value:
             best, best_value = corner, value
     return {**best, **fixed}
+
+
+def _worst_corner(box: ParameterBox, checked: Mapping, intervals: Mapping, fixed: Mapping) -> dict | None:
+    """The corner where the steps' right-hand sides are nearest their uniform bounds over the piece
+    (the sum over monomials of the relative gaps), or None when they cannot be compared."""
+    from ..certify.steps.conclusions import collect_monomials
+
+    by_name = {str(s_): s_ for s_ in intervals}
+    parts = []
+    try:
+        for role, (step, res) in checked.items():
+            variables = {m.symbol for m in step.measures}
+            uniform = collect_monomials(uniform_bound(res.rhs, intervals, variables,
+                                                      "lower" if role == "lower" else "upper"), variables)
+            parts.append((sympy.expand(res.rhs), variables, uniform))
+    except UnsupportedInput:
+        return None
+    best, best_score = None, None
+    for corner in box.corners():
+        rep = {by_name[k]: v for k, v in corner.items() if k in by_name}
+        score = 0.0
+        for rhs, variables, uniform in parts:
+            at = collect_monomials(sympy.expand(rhs.xreplace(rep)), variables)
+            for mono, u in uniform.items():
+                try:
+                    score += abs(float(u) - float(at.get(mono, 0))) / (abs(float(u)) + 1e-300)
+                except (TypeError, ValueError):
+                    return None
+        if best is None or score < best_score:
+            best, best_score = corner, score
+    return None if best is None else {**best, **fixed}

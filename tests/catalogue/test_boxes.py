@@ -203,3 +203,42 @@ def test_a_matrix_hypothesis_on_a_boxed_parameter_is_undecided_not_split_and_one
     off = _theorem(hypotheses=[Hypothesis("k > 0", k), MatrixHypothesis("[[2, c], [c, 2]] ≻ 0",
                                                                         sympy.Matrix([[2, c], [c, 2]]))])
     assert off.run(box={"k": ("1/2", "1")}).status is BoxStatus.ESTABLISHED
+
+
+# -- boxes of variables written in the given values ---------------------------------------------------
+G = sympy.Symbol("g")
+
+
+def test_a_box_of_a_variable_written_in_a_value_covers_every_point():
+    rep = TOY.run({"k": 2 * G}, box={"g": ("1/4", "1")})
+    assert rep.status is BoxStatus.ESTABLISHED and rep.parameters["k"] == "2*g"
+    c_tilde = next(r for r in rep.pieces[0].report.results if r.name == "c_tilde")
+    assert c_tilde.value["value"] <= 1.0 + 1e-12             # the worst point k = 1/2
+
+
+def test_a_hypothesis_failing_through_a_written_variable_is_failed_at_that_point():
+    rep = TOY.run({"k": G - R(1, 2)}, box={"g": (0, 1)})
+    assert rep.status is BoxStatus.FAILED and rep.failing[0].point == {"g": 0}
+
+
+def test_written_variables_need_an_interval_and_matrices_must_stay_positive_definite():
+    from lkverify.proofs.aleksandrov2023.theorem3 import theorem3
+
+    h = sympy.Symbol("h")
+    with pytest.raises(InputError, match="no interval"):
+        TOY.run({"k": 2 * G, "c": h}, box={"g": (1, 2)})
+    with pytest.raises(InputError, match="positive-definite matrix at every point"):
+        theorem3.run({"F": sympy.diag(h, h, h)}, box={"h": ("-1/10", "1")})
+    with pytest.raises(InputError, match="positive-definite matrix at every point"):
+        theorem3.run({"F": sympy.diag(h, 1, 1 - h)}, box={"h": ("1/2", "1")})   # 1 − h = 0 at h = 1
+
+
+@pytest.mark.slow
+def test_theorem3_over_b_and_the_gain_h_of_f_around_fig6():
+    from lkverify.proofs.aleksandrov2023.theorem3 import theorem3
+
+    h = sympy.Symbol("h")
+    rep = theorem3.run({"F": sympy.diag(h, h, h)}, box={"b": ("-11/10", "-9/10"), "h": ("9/10", "11/10")})
+    assert rep.status is BoxStatus.ESTABLISHED, rep.verdict
+    kappa = next(r for r in rep.pieces[0].report.results if "(s×r)ᵀF⁻¹Θω ≤" in r.name)
+    assert "parameter box" in str(kappa.value)             # κ1 is a supremum over the chart × h ∈ [9/10, 11/10]

@@ -44,3 +44,10 @@ def test_a_box_across_the_hypothesis_is_failed_at_a_point_in_json(capsys):
     (f,) = doc["failing"]
     assert f["link"] == "hypothesis b*tau < a" and f["point"]["b"] == "1/10"
     assert doc["verdict"].startswith("failed at the point b = 1/10")
+
+
+def test_a_box_variable_written_in_a_set_value(capsys):
+    code, out, err = run(capsys, "check", T3, "--set", "F=diag(h,h,h)", "--box", "h=-1/10:1", "--quiet")
+    assert code == 2 and "positive-definite matrix at every point" in err
+    code, out, err = run(capsys, "check", T3, "--set", "F=diag(h,h,h)", "--quiet")
+    assert code == 2 and "unknown name 'h'" in err
