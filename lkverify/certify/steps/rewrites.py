@@ -16,6 +16,10 @@ Substituting a bound for a measure is sound only where the expression is monoton
 that is checked by the sign of the partial derivative (structurally nonnegative for all
 nonnegative measures and positive parameters).
 
+Over a box of parameters (boxed parameters are symbols carrying their interval's sign) a
+side condition is proved only when it holds for every value; one that is neither shown nor
+refuted for every value (a sign that holds on part of the box) is ``undecided``, not ``failed``.
+
 Examples
 --------
 >>> import sympy
@@ -72,6 +76,34 @@ def _signed(c, direction) -> bool | None:
     if nonnegative(-target) and target != 0:
         return False
     return None
+
+
+def _nonnegative_or_negative(e) -> bool | None:
+    """True when e ≥ 0 (structurally), False when e < 0 for every value of its symbols (a negative number,
+    or by the symbols' assumptions), None otherwise: a sign that holds on part of a parameter box only
+    (a boxed symbol whose interval contains 0) is undecided, not refuted.
+
+    >>> import sympy
+    >>> c = sympy.Symbol("c", real=True)         # c ∈ [−1/10, 1]: the sign of a box symbol across 0
+    >>> _nonnegative_or_negative(sympy.Rational(-1, 2)), _nonnegative_or_negative(c), _nonnegative_or_negative(c**2)
+    (False, None, True)
+    """
+    e = sympy.sympify(e)
+    if nonnegative(e):
+        return True
+    return False if e.is_negative else None
+
+
+def _other_sign(ok) -> str:
+    """The detail of a sign condition that is not proved: refuted, or not shown on every value."""
+    return "it has the other sign" if ok is False else "its sign is not shown for every value of the parameters"
+
+
+def _all_of(*oks) -> bool | None:
+    """All of the tri-state decisions: False if one is False, True if all are True, else None."""
+    if any(ok is False for ok in oks):
+        return False
+    return True if all(ok is True for ok in oks) else None
 
 
 def _monotone(expr, symbol, increasing: bool) -> bool:
@@ -149,7 +181,7 @@ class YoungEach(Rule):
                 c = c * ratio
                 ok = _signed(c, direction)
                 conds.append(_cond(f"the coefficient {c} of ({x})·({y}) is {'≥' if direction == 'upper' else '≤'} 0",
-                                   ok, "it has the other sign"))
+                                   ok, _other_sign(ok)))
                 total += c * (eps * x**p / p + eps ** (-q / p) * y**q / q)
                 used += 1
                 break
@@ -207,7 +239,9 @@ class OnRegion(Rule):
         if h is None:
             return Application(self.name, None, tuple(conds))
         h = ctx.at(h)
-        conds.append(_cond(f"{m.text} ≤ {h}, h ≥ 0", nonnegative(h)))
+        h_ok = _nonnegative_or_negative(h)
+        conds.append(_cond(f"{m.text} ≤ {h}, h ≥ 0", h_ok,
+                           "h < 0" if h_ok is False else "the sign of h is not shown for every value of the parameters"))
         syms = _measure_symbols(ctx)
         total, used = sympy.S.Zero, 0
         for c, mono in _split(ctx.at(previous), syms):
@@ -219,7 +253,7 @@ class OnRegion(Rule):
             rest = c * mono / x**a
             ok = _signed(rest, direction)
             conds.append(_cond(f"the factor {rest} of {x}^{a} is {'≥' if direction == 'upper' else '≤'} 0", ok,
-                               "it has the other sign"))
+                               _other_sign(ok)))
             total += rest * h ** (a - k) * x**k
             used += 1
         conds.append(_cond(f"some term has a power of {x} above {k}", used > 0, f"none in {previous}"))
@@ -272,9 +306,11 @@ class WindowHolder(Rule):
                 and sympy.simplify(h - ctx.at(tgt.window)) == 0)
         conds = [_cond(f"{src.name}, {tgt.name}: window integrals of one vector over one window", same,
                        f"{src.kind} of {src.vector.T}, {tgt.kind} of {tgt.vector.T}"),
-                 _cond(f"orders k = {k} ≤ P = {P}",
-                       sympy.sympify(P - k).is_nonnegative is True and sympy.sympify(k).is_positive is True),
-                 _cond(f"window length {h} ≥ 0", nonnegative(h))]
+                 _cond(f"orders k = {k} ≤ P = {P}", _all_of(_nonnegative_or_negative(P - k),
+                                                           sympy.sympify(k).is_positive),
+                       "not shown for every value of the parameters"),
+                 _cond(f"window length {h} ≥ 0", _nonnegative_or_negative(h),
+                       "not shown for every value of the parameters")]
         bound, more = _substitute(ctx.at(previous), src.symbol, h ** (1 - k / P) * tgt.symbol ** (k / P), "upper",
                                   direction, f"h^(1−k/P)·{tgt.name}^(k/P) ≥ {src.name}")
         return Application(self.name, bound, tuple(conds + more))
@@ -337,7 +373,7 @@ class PowerSplit(Rule):
                                all(nonnegative(x) for x in A) and bool(sympy.sympify(power.exp).is_positive)))
             ok = _signed(-rest, direction)
             conds.append(_cond(f"the factor {rest} is {'≤' if direction == 'upper' else '≥'} 0", ok,
-                               "it has the other sign"))
+                               _other_sign(ok)))
             total += rest * sympy.powsimp(sympy.expand_power_base(pick ** power.exp, force=True), force=True)
             used += 1
         conds.append(_cond("some term has a power of a sum of measures", used > 0, f"none in {previous}"))
