@@ -26,6 +26,13 @@ The conclusion (Krasovskii's theorem, [8, pp. 53, 54]) is then a sign condition 
 coefficients of L, U and W (:class:`~lkverify.certify.steps.chain.Krasovskii`).  The
 choices γ, λ, μ, ε, δ and Young's η's are found at the run's gains by :func:`find_choices`
 (floating point only picks them; every step is then proved at those exact values).
+
+Over an interval of τ (``theorem1.run(box={"tau": (lo, hi)})``) the steps are proved with τ a
+positive symbol; the choices at the interval's centre close the chain when they keep their
+margin at its ends.  Every τ-dependent coefficient of L and W (through λτ + μ, τ^{1/P} and
+(τδ^P)^{2k/P−1}) is worst at the upper end, so :func:`box_choices`, picked for both ends at
+once, closes it on a whole interval: ``theorem1.run(box_choices(B), box=B)`` with
+B = {"tau": ("1/10", "10")} is established in one piece.
 """
 
 from __future__ import annotations
@@ -50,7 +57,8 @@ from .theorem1_bound import (MEASURES, M, L_norm_tree as _L_norm, M_norm_tree as
                              d1, d2, derivation, dinv as _dinv, e1, e2, eig_of as _eig, f_of as _f, i1, i2, k1, k2, l,
                              memory_pointwise as _pointwise, w)
 
-__all__ = ["CONCLUSION", "REGION", "chain_steps", "find_choices", "lemma10", "steps"]
+__all__ = ["CONCLUSION", "REGION", "box_choices", "chain_steps", "find_choices", "lemma10", "optimal_choices",
+           "steps"]
 
 K = 2 * nu + 1  # k
 Pw = 2 * nu + 2  # P
@@ -385,7 +393,7 @@ def _largest_delta_at(fns, x, hi=0.5):
     return math.exp(lo_)
 
 
-def optimal_choices(values, *, start=None, maxiter=1000, rounds=8) -> dict:
+def optimal_choices(values, *, start=None, maxiter=1000, rounds=8, box=None) -> dict:
     """The choices that maximise the region δ this chain certifies at the given gains.
 
     Every coefficient of L and W has one term of the sign it needs, so "every coefficient has
@@ -396,6 +404,14 @@ def optimal_choices(values, *, start=None, maxiter=1000, rounds=8) -> dict:
     is restarted (at most ``rounds`` times) until δ improves by less than 1 %.  Returns exact
     strings, rounded to four digits, δ the largest the rounded choices allow, times 0.9 and
     rounded down; the chain then proves them (floating point only picks them).
+
+    With ``box`` (name → (lo, hi) of scalar parameters, e.g. ``{"tau": ("1/2", "1")}``; ``values``
+    at any point of it, the boxed entries are replaced) the choices are picked for every corner
+    of the box at once: each constraint of the programme is imposed at each corner, and δ is
+    the smallest the rounded choices allow over the corners.  In τ every constraint is a
+    posynomial, log-convex in log τ, so its largest value over an interval is at an end: the
+    picked choices then have their margin on the whole interval (the chain over the box, with
+    the coefficients enclosed over it, is what proves that; this only picks the numbers).
 
     Examples
     --------
@@ -409,24 +425,32 @@ def optimal_choices(values, *, start=None, maxiter=1000, rounds=8) -> dict:
 
     from scipy.optimize import minimize
 
-    start = dict(start or find_choices(values))
-    fns = _coefficient_functions(values, start["epsilon"])
+    points = _corner_values(values, box)
+    centre = points[0] if box is None else _at(values, {k: (sympy.Rational(lo) + sympy.Rational(hi)) / 2
+                                                       for k, (lo, hi) in box.items()})
+    start = dict(start or find_choices(centre))
     x0 = [math.log(float(sympy.Rational(start[n]))) for n in _CHOICE_NAMES]
     given_eps = values.get("epsilon")
-    gp = _gp_choices(_coefficient_expressions(values, given_eps))
+
+    def largest_delta(fns_all, x):  # the δ every point allows
+        return min(_largest_delta_at(fns, x) for fns in fns_all)
+
+    gp = _gp_choices([e for v in points for e in _coefficient_expressions(v, given_eps)])
     if gp is not None:  # the global optimum of the geometric programme, rounded into the interior
         eps_ = sympy.Rational(given_eps) if given_eps is not None else min(_rational_below(gp[-2], 2), EPSILON_MAX)
-        fns_e = _coefficient_functions(values, eps_)
+        fns_e = [_coefficient_functions(v, eps_) for v in points]
         for s_ in (0.0, 0.02, 0.05, 0.1, 0.2, 0.4, 1.0):
             xs = [_rational_below(math.exp((1 - s_) * math.log(g) + s_ * a), 4) for g, a in zip(gp[:-2], x0)]
-            d = _largest_delta_at(fns_e, [float(x) for x in xs])
+            d = largest_delta(fns_e, [float(x) for x in xs])
             if d > 0:
                 out = {n: str(x) for n, x in zip(_CHOICE_NAMES, xs)}
                 out.update(epsilon=str(eps_), delta=str(_rational_below(0.9 * d)))
                 return out
 
+    fns_all = [_coefficient_functions(v, start["epsilon"]) for v in points]
+
     def objective(z):
-        d = _largest_delta_at(fns, [math.exp(v) for v in z])
+        d = largest_delta(fns_all, [math.exp(v) for v in z])
         return -math.log(d) if d > 0 else 200.0
 
     best, value = list(x0), objective(x0)
@@ -442,9 +466,50 @@ def optimal_choices(values, *, start=None, maxiter=1000, rounds=8) -> dict:
     # point until the choices, rounded to four digits, still leave a region
     for s_ in (0.02, 0.05, 0.1, 0.2, 0.4, 1.0):
         xs = [_rational_below(math.exp((1 - s_) * b + s_ * a), 4) for b, a in zip(best, x0)]
-        d = _largest_delta_at(fns, [float(x) for x in xs])
+        d = largest_delta(fns_all, [float(x) for x in xs])
         if d > 0:
             break
     out = {n: str(x) for n, x in zip(_CHOICE_NAMES, xs)}
     out.update(epsilon=start["epsilon"], delta=str(_rational_below(0.9 * d)))
     return out
+
+
+def _at(values, point):
+    """``values`` with the entries of ``point`` (name → exact value) replaced (the same resolved type)."""
+    out = type(values)({**values, **point})
+    if hasattr(values, "from_float"):
+        out.from_float = values.from_float
+    return out
+
+
+def _corner_values(values, box):
+    """[values] without a box; else ``values`` at every corner of ``box`` (name → (lo, hi), exact)."""
+    import itertools
+
+    if not box:
+        return [values]
+    names = list(box)
+    axes = [sorted({sympy.Rational(lo), sympy.Rational(hi)}) for lo, hi in (box[n] for n in names)]
+    return [_at(values, dict(zip(names, corner))) for corner in itertools.product(*axes)]
+
+
+def box_choices(box, values=None) -> dict:
+    """The proof's choices for every point of ``box`` (name → (lo, hi)): :func:`optimal_choices` over its corners.
+
+    ``values`` are the other parameters (the paper's defaults otherwise).  Give the result as
+    the run's values with the same box, ``theorem1.run(box_choices(B), box=B)``: the chain is
+    then checked at these exact choices for every point of the box (the choices are free: any
+    that close the chain prove the theorem there; these are picked to close it on all of B).
+
+    Examples
+    --------
+    >>> ch = box_choices({"tau": ("9", "10")})
+    >>> sorted(ch) == sorted(_CHOICE_NAMES + ("epsilon", "delta"))
+    True
+    """
+    from .equations import P
+
+    given = dict(values or {})
+    centre = {k: (sympy.Rational(lo) + sympy.Rational(hi)) / 2 for k, (lo, hi) in box.items()}
+    resolved = P.resolve({**given, **{k: str(v) for k, v in centre.items()}}, use_defaults=True)
+    return optimal_choices(resolved, box=dict(box))
