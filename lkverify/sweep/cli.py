@@ -52,6 +52,11 @@ def add_parser(sub, *, quiet, seconds, json_help) -> None:
                    help="time budget of the sweep; unfinished points are then undecided (a rerun resumes)")
     p.add_argument("--max-steps", type=int, default=10**6, metavar="N",
                    help="step budget of one run; a run needing more is undecided (default 1e6)")
+    p.add_argument("--prove", action="store_true",
+                   help="also run each catalogued theorem's chain for every point of each grid cell (a box): the "
+                        "columns proved:THEOREM and the proved layer of the map")
+    p.add_argument("--prove-max-boxes", type=int, default=3, metavar="N",
+                   help="pieces of one cell's subdivision with --prove (default 3)")
     p.add_argument("--json", action="store_true", help=json_help)
     quiet(p)
 
@@ -68,7 +73,8 @@ def run(args, *, check_output_path, emit) -> int:
     plot = args.plot or str(out.with_suffix(".png"))
     check_output_path(plot)
     options = SweepOptions(t_end=args.t_end, chunk_size=args.chunk_size, scheduler=args.scheduler,
-                           workers=args.workers, budget=args.budget, fresh=args.fresh, max_steps=args.max_steps)
+                           workers=args.workers, budget=args.budget, fresh=args.fresh, max_steps=args.max_steps,
+                           prove=args.prove, prove_max_boxes=args.prove_max_boxes)
     bar = _Bar(enabled=not args.quiet)
     result = sweep(args.item, grid=args.grids, sets=args.sets, out=out, options=options, progress=bar)
     bar.close()
@@ -189,6 +195,17 @@ def _report(result: SweepResult, marks, plot: str, figure_note: str) -> Report:
                Status.UNDECIDED: "undecided at some points, counted as not holding there"}[status]
         results.append(Result("hypothesis", f"{th}: {' and '.join(names)}", status, int(applies.sum()),
                               f"the hypotheses hold {where} ({how})"))
+    for th, counts in meta.get("proved", {}).items():
+        proved = np.asarray(result.table.column(f"proved:{th}").to_pylist(), dtype=object) == "established"
+        applies = np.asarray(result.table.column(f"applies:{th}").to_pylist(), dtype=bool)
+        inside = bool(np.all(applies[proved]))
+        frac = f"{proved.sum() / applies.sum():.0%} of the hypotheses' cells" if applies.any() else "no cell"
+        results.append(Result("bound", f"{th}: proved for every point of the cell", Status.CERTIFIED if inside
+                              else Status.FAILED, dict(counts),
+                              f"cells established {counts['established']} ({frac}), failed {counts['failed']}, "
+                              f"undecided {counts['undecided']}; every proved cell's run from inside its certified "
+                              f"region stayed under its envelope"
+                              + ("" if inside else "; a proved cell outside the hypotheses' region (a bug)")))
     verdicts = np.asarray(result.table.column("linear_verdict").to_pylist(), dtype=object)
     if meta["linear"]:
         results.append(Result("linear", "linearisation", Status.UNDECIDED, None, meta["linear"]))

@@ -76,6 +76,11 @@ class SweepOptions:
         Seconds for the whole sweep; unfinished chunks are then undecided.
     fresh : bool
         Discard finished chunks of an earlier run of this sweep instead of reusing them.
+    prove : bool
+        Also run each catalogued theorem's chain over every cell (:mod:`lkverify.sweep.prove`):
+        the columns ``proved:T``, ``proved_choices:T``, ``proved_envelope:T``.
+    prove_max_boxes : int
+        Pieces of one cell's subdivision.
 
     Examples
     --------
@@ -98,8 +103,12 @@ class SweepOptions:
     workers: int | None = None
     budget: float | None = None
     fresh: bool = False
+    prove: bool = False
+    prove_max_boxes: int = 3
 
     def __post_init__(self):
+        if not (isinstance(self.prove_max_boxes, int) and self.prove_max_boxes >= 1):
+            raise InputError(f"--prove-max-boxes: expected a whole number ≥ 1, got {self.prove_max_boxes!r}")
         if not (isinstance(self.chunk_size, int) and self.chunk_size >= 1):
             raise InputError(f"--chunk-size: expected a whole number ≥ 1, got {self.chunk_size!r}")
         if self.workers is not None and not (isinstance(self.workers, int) and self.workers >= 1):
@@ -236,6 +245,14 @@ def sweep(item, *, grid: Sequence[str] | Grid, sets: Sequence[str] = (), out, op
     if todo:
         _run(plan, grid, chunks, todo, checks["valid"], options, finished, deadline, errors, timings)
     timings["simulation"] = time.monotonic() - mark
+    if options.prove:
+        from .prove import prove_grid
+
+        mark = time.monotonic()
+        checks.update(prove_grid(plan, grid, checks, options, deadline))
+        timings["proofs"] = time.monotonic() - mark
+        meta["proved"] = {th.short: {st: int(np.sum(checks[f"proved:{th.short}"] == st))
+                                     for st in ("established", "failed", "undecided")} for th in plan.theorems}
     complete = len(done) == len(chunks)
     table = _assemble(plan, grid, chunks, done, checks, meta)
     _write_table(table, out)
@@ -466,7 +483,7 @@ def _assemble(plan, grid, chunks, done, checks, meta):
     data = {"point": np.arange(n, dtype=np.int64)}
     data.update({name: floats[:, j] for j, name in enumerate(grid.names)})
     data.update({"valid": checks["valid"], "invalid_reason": checks["invalid_reason"]})
-    data.update({k: v for k, v in checks.items() if k.startswith(("applies:", "margin:"))})
+    data.update({k: v for k, v in checks.items() if k.startswith(("applies:", "margin:", "proved"))})
     data.update(sim_cols)
     data[f"t_to_{_level(plan.simulation.level)}"] = data.pop("t_to_level")
     tbl = pa.table({k: _arrow(v) for k, v in data.items()})

@@ -272,6 +272,12 @@ class _Fields:
     def applies(self, theorem: str):
         return self.flags(f"applies:{theorem}")
 
+    def proved(self, theorem: str):
+        """The cells where the theorem's chain is established for the whole cell (None: not computed)."""
+        if f"proved:{theorem}" not in self.cols:
+            return None
+        return self.texts(f"proved:{theorem}") == "established"
+
     def abscissa(self) -> np.ndarray:
         """The linear spectral abscissa (or −1 / 0 / +1 from the verdict where it is NaN), NaN at invalid points."""
         a = self.floats("linear_abscissa")
@@ -409,6 +415,13 @@ def _theorems_2d(ax, data: _Fields, xe, ye) -> list:
         handles.append(Patch(facecolor="none", edgecolor=colour, hatch=hatch, hatchcolor=colour,
                              label=_region_label(what, mask, data.present)
                              + (f"\n({', '.join(hyps)})" if hyps else "")))
+        proved = data.proved(name)
+        if proved is not None:  # the cells where the chain is established for every point: outlined, dotted
+            ax.add_collection(PatchCollection(_rectangles(proved, xe, ye), facecolor="none", edgecolor="black",
+                                              hatch="..", hatchcolor="black", linewidth=1.2))
+            handles.append(Patch(facecolor="none", edgecolor="black", hatch="..", hatchcolor="black",
+                                 label=f"{theorem_label(name)}: proved for every point of the cell "
+                                       f"({int(proved.sum())} cells)"))
     return handles
 
 
