@@ -407,8 +407,11 @@ class _State:
         return {**out, **{n: v for n, v in point.items() if n in names}}
 
     def choices_at(self, box: ParameterBox) -> dict:
-        """The proof's choices at the box's centre (fixed for the box)."""
-        return self.theorem.chosen(self.point_values(box.center()))
+        """The proof's choices for the box (fixed for it): picked at its centre, or for the whole box by
+        a choices function that takes ``box=``."""
+        names = set(self.theorem.parameters.names)
+        scalars = {n: b for n, b in box.bounds.items() if n in names}
+        return self.theorem.chosen(self.point_values(box.center()), box=scalars or None)
 
     def _values(self, box: ParameterBox, chosen: Mapping):
         """(given, everything with the boxed symbols, intervals, fixed point values) for a piece and choices.

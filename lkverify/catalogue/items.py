@@ -380,15 +380,24 @@ class Theorem(Item):
         return {**chosen, **found}, dataclasses.replace(again, results=[row, *again.results],
                                                         at="the searched choices")
 
-    def chosen(self, values: Mapping) -> dict:
+    def chosen(self, values: Mapping, *, box: Mapping | None = None) -> dict:
         """The proof's free choices at these values: the fixed ``choices``, or those its callable finds.
 
         A callable ``choices(resolved)`` gets the resolved values (the given ones and the
-        defaults) and returns the choices as exact strings; values the user gives win.
+        defaults) and returns the choices as exact strings; values the user gives win.  Over a
+        box (name → (lo, hi) of scalar parameters) a callable that takes ``box=`` picks choices
+        for every point of it.
         """
         if not callable(self.choices):
             return dict(self.choices)
-        found = self.choices(self.parameters.resolve(dict(values), use_defaults=True))
+        resolved = self.parameters.resolve(dict(values), use_defaults=True)
+        import inspect
+
+        try:
+            takes_box = "box" in inspect.signature(self.choices).parameters
+        except (TypeError, ValueError):
+            takes_box = False
+        found = self.choices(resolved, box=dict(box)) if box and takes_box else self.choices(resolved)
         return {k: v for k, v in dict(found).items() if k not in values}
 
     def shown(self, values: Mapping, chosen: Mapping | None = None) -> dict:

@@ -38,6 +38,10 @@ def _end(value, where: str) -> tuple[sympy.Rational, bool]:
     """(exact rational, came from a float) of one end of an interval."""
     from .parameters import _has_float
 
+    if isinstance(value, str):  # text is read exactly, as on the command line (0.9 is 9/10)
+        from .parse import parse_value
+
+        value = parse_value(value, name=where, option="--box")
     floated = _has_float(value)
     try:
         v = sympy.Rational(float(value)) if floated else sympy.sympify(value)  # a float: its exact binary value

@@ -74,6 +74,13 @@ def test_choices_for_both_ends_establish_the_whole_decade_in_one_piece():
     _assert_established_in_one_piece(theorem1.run(choices, box=B, max_boxes=1))
 
 
+def test_the_plain_box_run_picks_choices_for_the_whole_decade():
+    """`check aleksandrov2026.theorem1 --box tau=1/10:10`: the theorem's choices function takes the box."""
+    rep = theorem1.run(box={"tau": ("1/10", "10")}, max_boxes=1)
+    _assert_established_in_one_piece(rep)
+    assert rep.verdict.startswith("established for every point of tau ∈ [1/10, 10]")
+
+
 def test_the_decade_choices_are_not_established_beyond_the_decade():
     """A wrong constant: the decade's choices on [1/10, 11]; at τ = 11 the I_i coefficient of L is < 0."""
     choices = box_choices({"tau": ("1/10", "10")})

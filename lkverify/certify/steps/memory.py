@@ -445,8 +445,8 @@ class MemoryHolder(Rule):
         same = s.vector == g.vector and sympy.simplify(ks - _kernel_at(g, ctx)) == 0
         kint = kernel_integral(s.kernel, ctx.sub)
         conds = [_cond(f"{s.name}, {g.name}: memory integrals of one vector with one kernel", same),
-                 _cond(f"orders 0 < k = {k} ≤ P = {P}",
-                       sympy.sympify(P - k).is_nonnegative is True and sympy.sympify(k).is_positive is True),
+                 _cond(f"orders 0 < k = {k} ≤ P = {P}", _both(sympy.sympify(P - k).is_nonnegative,
+                                                              sympy.sympify(k).is_positive), "not shown"),
                  _cond(f"the kernel {ks} ≥ 0 on [0, ∞)", nonnegative(ks) or None, "not shown"),
                  _cond(f"∫_0^∞ κ = {kint} is finite", kint is not None, "it diverges or is not evaluated")]
         if kint is None:
@@ -540,3 +540,10 @@ class MemoryKrasovskii(Krasovskii):
             rows.append(Result("region", "memory measures bounded by the history's sup", Status.EXACT,
                                None, "; ".join(parts)))
         return rows + list(more), status, detail
+
+
+def _both(a, b):
+    """True when both hold, False when one is shown false, None (undecided) when one is not shown."""
+    if a is False or b is False:
+        return False
+    return True if (a is True and b is True) else None

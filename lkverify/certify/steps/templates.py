@@ -370,16 +370,35 @@ class Template(Rule):
         return Application(self.name, bound, tuple(conds), ((self.constant, res.certified, info),))
 
 
+_RATIO_CACHE: dict = {}  # (ratio, box) → a certified SupResult: the same supremum recurs (other choices, pieces)
+
+
 def _sup_of_ratio(q, box, ctx):
-    """The certified supremum of one ratio over the chart's box (a constant ratio is its own supremum)."""
+    """The certified supremum of one ratio over the chart's box (a constant ratio is its own supremum).
+
+    A certified result is kept for the process, keyed by the ratio and the box with the chart's
+    dummies renamed canonically (the chart is rebuilt with fresh dummies on every check)."""
     from ..bounds import sup_bound
     from ...options import Budget
 
     if not box:  # no chart variables (1-vectors only): the ratio is a number
         box = {sympy.Dummy("unused"): (0, 1)}
-    return sup_bound(q, box, accuracy=TEMPLATE_ACCURACY, budget=Budget(seconds=ctx.seconds_left(),
-                                                                      boxes=TEMPLATE_BOXES),
-                     enclosure=TEMPLATE_ENCLOSURE)
+    order = sorted(box, key=lambda s_: (s_.name, str(box[s_])))
+    canon = {s_: sympy.Symbol(f"_chart{k}", **{a: v for a, v in s_.assumptions0.items() if v is not None and a in
+                                                 ("real", "positive", "nonnegative", "negative")})
+             for k, s_ in enumerate(order) if isinstance(s_, sympy.Dummy)}
+    key = (sympy.sympify(q).xreplace(canon), tuple((str(canon.get(s_, s_)), str(box[s_])) for s_ in order))
+    hit = _RATIO_CACHE.get(key)
+    if hit is not None:
+        return hit
+    res = sup_bound(q, box, accuracy=TEMPLATE_ACCURACY, budget=Budget(seconds=ctx.seconds_left(),
+                                                                     boxes=TEMPLATE_BOXES),
+                    enclosure=TEMPLATE_ENCLOSURE)
+    if res.certified is not None and res.status is Status.CERTIFIED and ctx.seconds_left() is None:
+        if len(_RATIO_CACHE) > 256:
+            _RATIO_CACHE.clear()
+        _RATIO_CACHE[key] = res
+    return res
 
 
 class _NotHomogeneous(Exception):
