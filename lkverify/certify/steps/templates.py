@@ -387,10 +387,12 @@ def _sup_of_ratio(q, box, ctx):
     canon = {s_: sympy.Symbol(f"_chart{k}", **{a: v for a, v in s_.assumptions0.items() if v is not None and a in
                                                  ("real", "positive", "nonnegative", "negative")})
              for k, s_ in enumerate(order) if isinstance(s_, sympy.Dummy)}
-    key = (sympy.sympify(q).xreplace(canon), tuple((str(canon.get(s_, s_)), str(box[s_])) for s_ in order))
+    q, box = sympy.sympify(q).xreplace(canon), {canon.get(s_, s_): box[s_] for s_ in order}
+    key = (q, tuple((str(s_), str(b)) for s_, b in box.items()))
     hit = _RATIO_CACHE.get(key)
     if hit is not None:
         return hit
+    # the canonical chart symbols also let the compiled Taylor programs be reused (another cell, other choices)
     res = sup_bound(q, box, accuracy=TEMPLATE_ACCURACY, budget=Budget(seconds=ctx.seconds_left(),
                                                                      boxes=TEMPLATE_BOXES),
                     enclosure=TEMPLATE_ENCLOSURE)
