@@ -132,12 +132,38 @@ def condition10(ctx) -> Condition:
 
 # ---- Lemma 1 on the region ------------------------------------------------------------------------
 @functools.lru_cache(maxsize=64)
-def _lemma_certificate(eps_, a1_, a2_, r1_, r2_, sigma_max, seconds):
+def _lemma_certificate(eps_, a1_, a2_, r1_, r2_, sigma_max, seconds, boxed=()):
+    """F ≥ 0 (:func:`.lemma1.lemma1_F`) on σ ∈ [0, σ̄] × every axis u × the boxed parameters (``boxed``:
+    ((symbol, (lo, hi)), …) for the symbols of ε, a1, a2 that are boxed): one certificate for every point."""
     from .lemma1 import _U, _sig, lemma1_F
 
     F = lemma1_F(eps_, a1_, a2_, sympy.Matrix(r1_), sympy.Matrix(r2_))
-    return certify_positive(F, {_sig: (0, sigma_max), **_U.region}, name=f"F ≥ 0 for σ ≤ {sigma_max}",
+    return certify_positive(F, {_sig: (0, sigma_max), **_U.region, **dict(boxed)}, name=f"F ≥ 0 for σ ≤ {sigma_max}",
                             budget=Budget(seconds=seconds))
+
+
+def _upper_over_box(expr, ctx):
+    """A rational upper bound of ``expr`` at every point of the parameter box (the value itself without boxed
+    symbols), or None when it cannot be enclosed."""
+    from lkverify.certify.boxes import enclose_over, exact_interval, upper_rational
+
+    expr = sympy.sympify(expr)
+    boxed = {s_: ctx.parameter_box[s_] for s_ in expr.free_symbols if s_ in (ctx.parameter_box or {})}
+    if expr.free_symbols - set(boxed):
+        return None
+    if not boxed:
+        return expr
+    exact = exact_interval(expr, boxed)
+    return exact[1] if exact is not None else upper_rational(enclose_over(expr, boxed))
+
+
+def _boxed_interval(expr, ctx):
+    """(lo, hi) of a parameter that is a boxed symbol (its interval), (value, value) for a number, else None."""
+    expr = sympy.sympify(expr)
+    if expr in (ctx.parameter_box or {}):
+        lo, hi = ctx.parameter_box[expr]
+        return sympy.Rational(lo), sympy.Rational(hi)
+    return (expr, expr) if expr.is_Rational else None
 
 
 def lemma6(ctx) -> Condition:
@@ -145,23 +171,44 @@ def lemma6(ctx) -> Condition:
 
     With s_i = R r_i and σ = sin(φ/2), e1² + e2² ≥ 4σ² for orthonormal r1, r2, so on the region
     e_i ≤ b_i, σ ≤ √(b1² + b2²)/2; F(σ, u) ≥ 0 there for every axis u is (6) divided by σ².
+
+    Over a parameter box (``ctx.parameter_box``) the boxed ε, a1, a2 in F are variables of the
+    certificate's box (F ≥ 0 on σ × u × their intervals: for every point), ε's interval must lie in
+    (0, 1), and σ̄ is taken from rational upper bounds of the region's b_i over the box.
     """
     eps_ = ctx.at(eps)
-    if not (eps_.is_Rational and 0 < eps_ < 1):
-        return Condition("(6) on the region", Status.FAILED, f"Lemma 1 needs 0 < ε < 1, got ε = {eps_}")
+    eps_range = _boxed_interval(eps_, ctx)
+    if eps_range is None or not (0 < eps_range[0] and eps_range[1] < 1):
+        return Condition("(6) on the region", Status.FAILED if eps_range is not None or eps_.is_number else
+                         Status.UNDECIDED, f"Lemma 1 needs 0 < ε < 1, got ε = {eps_}"
+                         + (f" ∈ [{eps_range[0]}, {eps_range[1]}]" if eps_range and eps_range[0] != eps_range[1]
+                            else ""))
     bounds = [ctx.region.bound_of(m, ctx.sub) if ctx.region is not None else None for m in (E1, E2)]
     if any(b is None for b in bounds):
         return Condition("(6) on the region", Status.UNDECIDED, "the region does not bound both ‖s_i − r_i‖")
-    b1, b2 = (sympy.sympify(ctx.at(b)) for b in bounds)
-    sigma_max = sympy.sqrt(b1**2 + b2**2) / 2
+    b1, b2 = (_upper_over_box(ctx.at(b), ctx) for b in bounds)
+    if b1 is None or b2 is None:
+        return Condition("(6) on the region", Status.UNDECIDED,
+                         "the region's bounds on ‖s_i − r_i‖ have no rational upper bound over the box")
+    sigma_max = sympy.sqrt(sympy.sympify(b1) ** 2 + sympy.sympify(b2) ** 2) / 2
     sigma_max = sympy.Rational(sympy.ceiling(sympy.N(sigma_max, 30) * 10**12), 10**12)  # a rational upper bound
     if sigma_max >= 1:
         return Condition("(6) on the region", Status.FAILED, f"the region allows σ = sin(φ/2) up to {sigma_max} ≥ 1")
-    chk = _lemma_certificate(eps_, ctx.at(a1), ctx.at(a2), tuple(ctx.values["r1"]), tuple(ctx.values["r2"]),
-                             sigma_max, ctx.seconds_left(20.0))
-    text = f"(6) with ε = {eps_} on the region (Lemma 1: F ≥ 0 for σ ≤ {float(sigma_max):.4g}, every axis u)"
+    a1_, a2_ = ctx.at(a1), ctx.at(a2)
+    boxed = tuple(sorted(((s_, (sympy.Rational(ctx.parameter_box[s_][0]), sympy.Rational(ctx.parameter_box[s_][1])))
+                          for e in (eps_, a1_, a2_) for s_ in sympy.sympify(e).free_symbols
+                          if s_ in (ctx.parameter_box or {})), key=lambda p: str(p[0])))
+    if any(sympy.sympify(e).free_symbols - {s_ for s_, _ in boxed} for e in (eps_, a1_, a2_)):
+        return Condition("(6) on the region", Status.UNDECIDED, f"ε = {eps_}, a1 = {a1_}, a2 = {a2_}: symbols "
+                                                                "without an interval")
+    if boxed:
+        ctx.box_used = True  # the certificate depends on the box's ends
+    chk = _lemma_certificate(eps_, a1_, a2_, tuple(ctx.values["r1"]), tuple(ctx.values["r2"]),
+                             sigma_max, ctx.seconds_left(20.0), boxed)
+    over = "" if not boxed else ", every " + ", ".join(f"{s_} ∈ [{lo}, {hi}]" for s_, (lo, hi) in boxed)
+    text = f"(6) with ε = {eps_} on the region (Lemma 1: F ≥ 0 for σ ≤ {float(sigma_max):.4g}, every axis u{over})"
     status = Status.CERTIFIED if chk.status is Status.CERTIFIED else \
-        Status.FAILED if chk.status is Status.FAILED else Status.UNDECIDED
+        Status.FAILED if chk.status is Status.FAILED and not boxed else Status.UNDECIDED
     return Condition(text, status, f"{chk.boxes} boxes" if status is Status.CERTIFIED else chk.detail)
 
 

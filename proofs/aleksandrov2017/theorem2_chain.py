@@ -240,7 +240,7 @@ steps = chain_steps()
 CONCLUSION = TimeVaryingRate(("w", "e1", "e2"), "hh", nu, alpha8, conditions=condition11, lam=LAMBDA)
 
 
-def find_choices(values) -> dict:
+def find_choices(values, box=None) -> dict:
     """γ, ε, δ1, δ_ω, η_w, η_h, α8 at the run's values (exact strings), in closed form (no optimisation).
 
     ε = δ1 = δ_ω = 1/2 unless given; H = sup_{t≥0} h exactly, L of (15) exact.  The e_i⁴-terms of W:
@@ -251,21 +251,33 @@ def find_choices(values) -> dict:
     and α8 is 9/10 of min(2d_min²H^{1−ν}, γε²a_min⁴/2)/(3ū²) (U² ≤ 3Σū_k²x_k⁴, ū the sups of U's
     coefficients), rounded down.  Floating point only picks the numbers: every step is proved at them.
 
+    With ``box`` (name → (lo, hi), from a run over a box) the boxed a1, a2 enter at their worst ends for
+    each use, as the chain's coefficients enclosed over the box see them: a_min the smallest lower end
+    (the −γε²a_i⁴ margins), a_max and a1 + a2 the largest upper ends (every positive coefficient); ε, δ1,
+    δ_ω boxed are taken at their lower, upper, upper ends.  Other boxed names do not change the recipe.
+
     Examples
     --------
     >>> from lkverify.proofs.aleksandrov2017.equations import P
     >>> sorted(find_choices(P.resolve({}, use_defaults=True)))
     ['alpha8', 'delta1', 'delta_w', 'eps', 'eta_h2', 'eta_w', 'gamma']
     """
-    r = lambda k, d: sympy.Rational(values[k]) if values.get(k) is not None else sympy.Rational(d)  # noqa: E731
-    eps_, d1, dw = r("eps", "1/2"), r("delta1", "1/2"), r("delta_w", "1/2")
+    box = {k: (sympy.Rational(lo), sympy.Rational(hi)) for k, (lo, hi) in (box or {}).items()}
+
+    def r(k, d, end=0):
+        if k in box:
+            return box[k][end]
+        return sympy.Rational(values[k]) if values.get(k) is not None else sympy.Rational(d)
+
+    eps_, d1, dw = r("eps", "1/2"), r("delta1", "1/2", 1), r("delta_w", "1/2", 1)
     H, _ = sup_in_t(_h_of(values))
     H = float(H) if H is not None and H.is_number and H.is_finite else 1.0
     nu_ = float(values["nu"])
     L = float(_L15(values)) if _L15(values).is_number else 1.0  # (15) fails or undecided: the step says so
     jmin, jmax, dmin, dmax = (float(_eig(m, k)(values)) for m in ("J", "D") for k in ("min", "max"))
-    a_lo, a_hi = sorted((float(values["a1"]), float(values["a2"])))
-    a, e2_ = a_lo + a_hi, float(eps_) ** 2
+    ends = [box.get(k, (values[k], values[k])) for k in ("a1", "a2")]
+    a_lo, a_hi = min(float(lo) for lo, _ in ends), max(float(hi) for _, hi in ends)
+    a, e2_ = sum(float(hi) for _, hi in ends), float(eps_) ** 2
     K = jmax * a * (3 + float(d1)) + 4 * dmax**2 * a * float(d1) * float(dw) * H
     et_h = _rational((3 * nu_ * jmax * L * a**2 * a_hi / (e2_ * a_lo**4)) ** 3, up=True)
     et_w = _rational(2 * K * a * a_hi / (e2_ * a_lo**4), up=True)
