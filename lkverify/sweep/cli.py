@@ -76,8 +76,11 @@ def run(args, *, check_output_path, emit) -> int:
                            workers=args.workers, budget=args.budget, fresh=args.fresh, max_steps=args.max_steps,
                            prove=args.prove, prove_max_boxes=args.prove_max_boxes)
     bar = _Bar(enabled=not args.quiet)
-    result = sweep(args.item, grid=args.grids, sets=args.sets, out=out, options=options, progress=bar)
+    cells = _Bar(enabled=not args.quiet, label="prove", unit="cells")
+    result = sweep(args.item, grid=args.grids, sets=args.sets, out=out, options=options, progress=bar,
+                   prove_progress=cells)
     bar.close()
+    cells.close()
     marks = _marks(result)
     meta = {**result.meta, "marks": [m for m, _ in marks]}
     figure_note = _figure(result, meta, plot)
@@ -87,8 +90,9 @@ def run(args, *, check_output_path, emit) -> int:
 class _Bar:
     """A progress bar on stderr (a line per 10 % when stderr is not a terminal)."""
 
-    def __init__(self, enabled: bool):
+    def __init__(self, enabled: bool, label: str = "sweep", unit: str = "points"):
         self.enabled, self.tty = enabled, sys.stderr.isatty()
+        self.label, self.unit = label, unit
         self.last = -1
         self.shown = False
 
@@ -97,7 +101,7 @@ class _Bar:
             return
         frac = done / total if total else 1.0
         eta = seconds * (1 - frac) / frac if frac > 0 else math.inf
-        text = f"sweep: {done}/{total} points, {seconds:.0f} s, about {eta:.0f} s left"
+        text = f"{self.label}: {done}/{total} {self.unit}, {seconds:.0f} s, about {eta:.0f} s left"
         if self.tty:
             k = int(30 * frac)
             print(f"\r[{'#' * k}{'.' * (30 - k)}] {100 * frac:5.1f}% {text}   ", end="", file=sys.stderr, flush=True)

@@ -170,7 +170,8 @@ class SweepResult:
 
 
 def sweep(item, *, grid: Sequence[str] | Grid, sets: Sequence[str] = (), out, options: SweepOptions = SweepOptions(),
-          progress: Callable[[int, int, float], None] | None = None) -> SweepResult:
+          progress: Callable[[int, int, float], None] | None = None,
+          prove_progress: Callable[[int, int, float], None] | None = None) -> SweepResult:
     """Sweep ``item`` over ``grid`` and write the table to ``out`` (Parquet).
 
     Parameters
@@ -186,6 +187,8 @@ def sweep(item, *, grid: Sequence[str] | Grid, sets: Sequence[str] = (), out, op
     options : SweepOptions
     progress : callable, optional
         ``progress(points_done, points_total, seconds)`` after every finished chunk.
+    prove_progress : callable, optional
+        ``prove_progress(cells_done, cells_total, seconds)`` after every proved cell (``options.prove``).
 
     Raises
     ------
@@ -249,7 +252,7 @@ def sweep(item, *, grid: Sequence[str] | Grid, sets: Sequence[str] = (), out, op
         from .prove import prove_grid
 
         mark = time.monotonic()
-        checks.update(prove_grid(plan, grid, checks, options, deadline))
+        checks.update(prove_grid(plan, grid, checks, options, deadline, progress=prove_progress))
         timings["proofs"] = time.monotonic() - mark
         meta["proved"] = {th.short: {st: int(np.sum(checks[f"proved:{th.short}"] == st))
                                      for st in ("established", "failed", "undecided")} for th in plan.theorems}

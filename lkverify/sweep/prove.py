@@ -183,7 +183,7 @@ def _measure_series(measure, system, values, traj) -> np.ndarray:
     return np.sqrt(np.sum(vals ** 2, axis=0))
 
 
-def prove_grid(plan, grid, checks: Mapping, options, deadline=None) -> dict:
+def prove_grid(plan, grid, checks: Mapping, options, deadline=None, progress=None) -> dict:
     """The proved columns of a sweep: per theorem, every cell where its hypotheses hold at the grid point
     is run (on the sweep's Dask cluster, or in this process with ``scheduler="synchronous"``); a cell
     whose grid point fails a hypothesis is ``failed`` (that point is in the cell), an invalid one
@@ -205,10 +205,15 @@ def prove_grid(plan, grid, checks: Mapping, options, deadline=None) -> dict:
         out[f"proved_envelope:{th.short}"] = np.full(n, np.nan)
         jobs += [(th.short, th.name, k) for k in np.flatnonzero(applies & valid)]
 
+    start, count = time.monotonic(), [0]
+
     def record(short, k, res):
         out[f"proved:{short}"][k] = res["status"]
         out[f"proved_choices:{short}"][k] = res["choices"]
         out[f"proved_envelope:{short}"][k] = res["envelope"]
+        count[0] += 1
+        if progress is not None:
+            progress(count[0], len(jobs), time.monotonic() - start)
 
     kw = dict(max_boxes=options.prove_max_boxes, equilibrium=equilibrium)
     if options.scheduler == "synchronous":
