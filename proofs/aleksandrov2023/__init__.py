@@ -29,6 +29,9 @@ Modules: :mod:`.equations` (parameters, states, (10), (12)), :mod:`.theorem3`,
 :mod:`.theorem3_bound` (the printed V̇ bound, refuted, and corrected), :mod:`.theorem3_caps` (the best d1 and δ̃
 of estimate (15) for this functional), :mod:`.section6` (the data of the
 figures), :mod:`.fig1` … :mod:`.fig7`, :mod:`.fig7_chi` (‖χ‖_τ of the Fig. 7 data).
+Theorem 1 (system (3), functional (П.1)): :mod:`.theorem1` on the radial Π̃ of :mod:`.system3`,
+:mod:`.theorem1_nonradial` on a non-radial Π̃ (a general quartic form, the same chain with
+‖∂Π̃/∂q‖ ≤ κ_g‖q‖^μ certified), :mod:`.corollary1` (the decay estimate).
 The items are re-exported here under their names: ``aleksandrov2023.theorem3`` is the
 item (the module is ``aleksandrov2023.theorem3`` in ``sys.modules``; import names from
 it with ``from lkverify.proofs.aleksandrov2023.theorem3 import functional``).
@@ -50,6 +53,7 @@ from .section6 import FIG7_HISTORY, PRINTED_15, R_TARGET, SECTION6
 from .theorem3_constants import THEOREM3_CONSTANTS
 from .section6_conditions import section6
 from .theorem1 import theorem1
+from .theorem1_nonradial import theorem1_nonradial
 from .theorem1_bound import theorem1_bound
 from .corollary1 import corollary1
 from .theorem2 import theorem2
@@ -67,7 +71,7 @@ __all__ = [
     "R_TARGET", "SECTION6", "FIG7_HISTORY", "PRINTED_15",
     "fig1", "fig2", "fig3", "fig4", "fig5", "fig6", "fig7", "fig7_chi", "section6",
     # Theorem 1 (system (3), functional (П.1))
-    "theorem1", "theorem1_bound", "corollary1",
+    "theorem1", "theorem1_bound", "corollary1", "theorem1_nonradial",
     # Theorem 2 (decomposition, section 4)
     "theorem2", "theorem2_example", "theorem2_counter",
     # the linear case μ = 1 (linearisation, damping threshold)

@@ -62,7 +62,7 @@ _holder = ((mu + 1) / mu, mu + 1)
 lam_c9, k11, lam_skew = sympy.symbols("lam_c9 k11 lam_skew", real=True)
 
 
-def _lower():
+def _lower(K=K_int, tree=gradient_tree):
     q_ = mu + 1
     return [
         TermBound("½λq̇ᵀAq̇", lam * c1 * w**2,
@@ -74,7 +74,7 @@ def _lower():
                   then=(YoungEach(((e, w, 2, 2, eta_w),)),)),
         TermBound("−qᵀ∫(ξ−t+τ)∂Π̃/∂q dξ",
                   -c4 * k_tau * (eta_K * delta_q ** (mu - 1) * e**2 / q_ + eta_K ** (-1 / mu) * mu * j**q_ / q_),
-                  CauchySchwarz(q(t), K_int, (measured(E_), gradient_tree(J_, weight=xi - t + tau, holder=_holder)),
+                  CauchySchwarz(q(t), K, (measured(E_), tree(J_, weight=xi - t + tau, holder=_holder)),
                                 factor=-1),
                   then=(YoungEach(((e, j**mu, q_, q_ / mu, eta_K),)), OnRegion("e", 2))),
         # ≥ αj^{μ+1}, stated as the part the Young remainder above needs (α ≥ it: checked), so that L is
@@ -84,7 +84,7 @@ def _lower():
     ]
 
 
-def _upper():
+def _upper(K=K_int, tree=gradient_tree):
     return [
         TermBound("½λq̇ᵀAq̇", lam * c5 * w**2,
                   Rayleigh(v(t), A, factor=lam / 2, eigenvalue=_ctx_eig("max", A), norm_squared=w**2)),
@@ -93,7 +93,7 @@ def _upper():
         TermBound("qᵀAq̇", c3 * e * w,
                   CauchySchwarz(q(t), v(t), (measured(E_), measured(W_)), matrix=A, operator_norm=_ctx_eig("max", A))),
         TermBound("−qᵀ∫(ξ−t+τ)∂Π̃/∂q dξ", c4 * k_tau * e * j**mu,
-                  CauchySchwarz(q(t), K_int, (measured(E_), gradient_tree(J_, weight=xi - t + tau, holder=_holder)),
+                  CauchySchwarz(q(t), K, (measured(E_), tree(J_, weight=xi - t + tau, holder=_holder)),
                                 factor=-1)),
         TermBound("∫(α+β(ξ−t+τ))‖q(ξ)‖^{μ+1}dξ", (alpha + beta * tau) * j ** (mu + 1),
                   WindowWeight("j", mu + 1, weight=alpha + beta * (xi - t + tau))),
@@ -110,7 +110,7 @@ def _young_j(c):
     return c * (eta_j * w**2 / 2 + (tau_j * delta_q) ** (mu - 1) * j ** (mu + 1) / (2 * eta_j))
 
 
-def _vdot():
+def _vdot(K=K_int, J=J_int, tree=gradient_tree):
     young_e = (YoungEach(((w, e**mu, 2, 2, eta),)), OnRegion("e", mu + 1))
     young_j = (YoungEach(((w, j**mu, 2, 2, eta_j),)), OnRegion("j", mu + 1))
     return [
@@ -119,13 +119,13 @@ def _vdot():
         TermBound("q̇ᵀAq̇", c8 * w**2, Rayleigh(v(t), A, eigenvalue=_ctx_eig("max", A), norm_squared=w**2)),
         TermBound("−λq̇ᵀ∂Π/∂q", _young_e(lam_c9, mu), Template("lam_c9", {"w": 1, "e": 3}), then=young_e),
         TermBound("−λq̇ᵀ∫∂Π̃/∂q dξ", _young_j(lam * c10 * tau_j),
-                  CauchySchwarz(v(t), J_int, (measured(W_), gradient_tree(J_, holder=_holder)), factor=-lam),
+                  CauchySchwarz(v(t), J, (measured(W_), tree(J_, holder=_holder)), factor=-lam),
                   then=young_j),
         TermBound("−λq̇ᵀP(q)q", _young_e(lam * p0, sigma), Template("lam_skew", {"w": 1, "e": 3}),
                   then=(YoungEach(((w, e**sigma, 2, 2, eta),)), OnRegion("e", mu + 1))),
         TermBound("−qᵀ(∂Π/∂q+τ∂Π̃/∂q)", k11 * e ** (mu + 1), Template("k11", {"e": 4})),
         TermBound("−q̇ᵀ∫(ξ−t+τ)∂Π̃/∂q dξ", _young_j(c12 * k_tau),
-                  CauchySchwarz(v(t), K_int, (measured(W_), gradient_tree(J_, weight=xi - t + tau, holder=_holder)),
+                  CauchySchwarz(v(t), K, (measured(W_), tree(J_, weight=xi - t + tau, holder=_holder)),
                                 factor=-1),
                   then=young_j),
         TermBound("−β∫‖q(ξ)‖^{μ+1}dξ", -beta * j ** (mu + 1), Equal(-beta * j ** (mu + 1))),
@@ -134,11 +134,18 @@ def _vdot():
     ]
 
 
-def chain_steps():
-    """(V ≥ L, V ≤ U, V̇ ≤ W) of the proof of Theorem 1 on :data:`REGION`."""
-    lower, upper, vdot = _lower(), _upper(), _vdot()
-    return lyapunov_steps(functional, system3, lower, upper, vdot, MEASURES,
-                          region=REGION, definitions=DEFINITIONS, derivation=derivation)
+def chain_steps(*, functional=functional, system=system3, derivation=derivation, K=K_int, J=J_int,
+                tree=gradient_tree, definitions=DEFINITIONS):
+    """(V ≥ L, V ≤ U, V̇ ≤ W) of the proof of Theorem 1 on :data:`REGION`.
+
+    By default for the instance of :mod:`.system3`; another instance of (3) in the same symbols
+    passes its functional, system, derivation, the window integrals K = ∫(ξ−t+τ)∂Π̃/∂q and
+    J = ∫∂Π̃/∂q, the norm tree ``tree(measure, *, holder, weight)`` of ‖∫ g ∂Π̃/∂q‖ and the
+    definitions of c1 … c12 (:mod:`.theorem1_nonradial`).  The term bounds are the same.
+    """
+    lower, upper, vdot = _lower(K, tree), _upper(K, tree), _vdot(K, J, tree)
+    return lyapunov_steps(functional, system, lower, upper, vdot, MEASURES,
+                          region=REGION, definitions=definitions, derivation=derivation)
 
 
 steps = chain_steps()
@@ -161,7 +168,7 @@ class _Conclusion(Krasovskii):
         if not status.is_proof:  # compared only on a region where the chain concludes
             return rows, status, detail
         step, res = steps["vdot"]
-        sub = dict(system3.parameters.substitution(values))
+        sub = dict(step.system.parameters.substitution(values))
         sub.update(step.named_constants(values))
         gap = printed_p3(sympy.Rational(res.constants["k11"])) - res.rhs
         gap = sympy.expand(apply_substitution(sympy.sympify(gap).xreplace(sub), sub))
@@ -201,11 +208,12 @@ def _above(x, digits=3):
     return sympy.Rational(int(np.ceil(x / 10.0**k)), 1) * sympy.Rational(10) ** k
 
 
-def _estimates(values):
+def _estimates(values, parameters, forms, kt):
     """Float estimates of the constants of the steps at the run's gains (c9, c11 sampled on the circle)."""
     from lkverify.declare.parameters import apply_substitution
 
-    sub = system3.parameters.substitution(values)
+    Pi, Pi_t = forms
+    sub = parameters.substitution(values)
     f = lambda x: float(sympy.N(x, 30))  # noqa: E731
     at = lambda ex: apply_substitution(sympy.sympify(ex), sub)  # noqa: E731
     gP = grad(at(Pi), X)
@@ -214,12 +222,12 @@ def _estimates(values):
     mu_, tau_ = f(values["mu"]), f(values["tau"])
     return {"a_min": f(extreme_eigenvalue(values["A"], "min")), "a_max": f(extreme_eigenvalue(values["A"], "max")),
             "b_min": f(extreme_eigenvalue(values["B"], "min")), "b_max": f(extreme_eigenvalue(values["B"], "max")),
-            "kt": f(values["kappa_t"]), "p0": f(values["p0"]), "mu": mu_, "sigma": f(values["sigma"]), "tau": tau_,
+            "kt": f(kt), "p0": f(values["p0"]), "mu": mu_, "sigma": f(values["sigma"]), "tau": tau_,
             "c9": c9, "c11": c11, "k_tau": (tau_ ** (mu_ + 2) / (mu_ + 2)) ** (1 / (mu_ + 1)),
             "tau_j": tau_ ** (1 / (mu_ + 1))}
 
 
-def find_choices(values) -> dict:
+def find_choices(values, *, parameters=None, forms=(Pi, Pi_t), kt=None) -> dict:
     """λ, α, β, δ_q, δ_v, η_w, η_K, η, η_j for which every coefficient of L, U, W has its sign (exact strings).
 
     The recipe follows the proof and aims at its (П.3): λ large (λc7/2 beats c8 and the Young
@@ -229,6 +237,9 @@ def find_choices(values) -> dict:
     Π + τΠ̃ is not positive definite (c11 ≤ 0) the recipe runs with c11 = 0.01, and the chain
     fails at the sign of the ‖q‖^{μ+1} coefficient of W.
 
+    Another instance of (3) in the same symbols passes its ``parameters``, ``forms`` = (Π, Π̃)
+    and ``kt``, the exact constant of ‖∂Π̃/∂q(q)‖ ≤ kt‖q‖^μ (c4 = c10 = c12; default κ̃).
+
     Examples
     --------
     >>> from lkverify.proofs.aleksandrov2023.system3 import P3
@@ -236,7 +247,9 @@ def find_choices(values) -> dict:
     >>> sorted(ch)
     ['alpha', 'beta', 'delta_q', 'delta_v', 'eta', 'eta_K', 'eta_j', 'eta_w', 'lam']
     """
-    c = _estimates(values)
+    parameters = system3.parameters if parameters is None else parameters
+    kt_exact = sympy.sympify(values["kappa_t"] if kt is None else kt)
+    c = _estimates(values, parameters, forms, kt_exact)
     if not (c["mu"] > 1 and 2 * c["sigma"] > c["mu"] + 1):
         return {}
     if c["c11"] <= 0:  # Π + τΠ̃ not positive definite: choices anyway, the chain then fails where it must
@@ -255,8 +268,8 @@ def find_choices(values) -> dict:
     from lkverify.declare.parameters import apply_substitution
 
     mu_x = sympy.sympify(values["mu"])
-    kt_x = apply_substitution(k_tau, system3.parameters.substitution(values))
-    eta_K_ = (sympy.sympify(values["kappa_t"]) * kt_x * mu_x / ((mu_x + 1) * alpha_)) ** mu_x
+    kt_x = apply_substitution(k_tau, parameters.substitution(values))
+    eta_K_ = (kt_exact * kt_x * mu_x / ((mu_x + 1) * alpha_)) ** mu_x
     e9 = (L * (c["c9"] + c["p0"]))
     cands = [0.5,
              # e^{μ+1}: (λc9)δ^{μ−1}/(2η) + λp0 δ^{2σ−μ−1}/(2η) ≤ c11/8

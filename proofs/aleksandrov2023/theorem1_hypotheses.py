@@ -99,6 +99,9 @@ class SkewBound:
     >>> r = skew_bound.evaluate(P3.substitution(P3.resolve({"p0": "1"}, use_defaults=True)))
     >>> r.status.value                                        # max |φ| on the circle is (1 + √(5/4))/2 > 1
     'failed'
+    >>> sub = P3.substitution(P3.resolve({"p11": 1, "p12": 0, "p0": 1}, use_defaults=True))
+    >>> skew_bound.evaluate(sub).status.value                 # |q1²| ≤ ‖q‖² holds, with equality at (1, 0)
+    'undecided'
     """
 
     def __init__(self, name, phi_form, p0_, sigma_, *, reference=""):
@@ -122,8 +125,21 @@ class SkewBound:
         seconds = _SECONDS if budget is None else max(min(float(budget), _SECONDS), 0.5)
         res = homogeneous_positive_on_sphere(g, X, name="p0²‖q‖^{2(σ−1)} − φ²",
                                              budget=Budget(seconds=seconds, boxes=50_000))
-        return Result("hypothesis", self.name, res.status, res.margin.lo if res.margin is not None else None,
-                      f"{ref}‖P(q)‖ = |φ(q)|, φ = {f}: p0²‖q‖^{{2(σ−1)}} − φ² = {g} on ‖q‖ = 1: {res.detail}")
+        status = res.status
+        if status is Status.FAILED and res.witness is not None:
+            # the sphere test is strict; (4) is ≤: a zero of g (‖P(q)‖ = p0‖q‖^{σ−1} there) refutes nothing
+            at = dict(zip(X, (sympy.Rational(x.numerator, x.denominator) for x in res.witness)))
+            if not sympy.expand(g.xreplace(at)).is_negative:
+                found = _negative_point(g)
+                status = Status.UNDECIDED if found is None else Status.FAILED
+                if found is not None:
+                    return Result("hypothesis", self.name, Status.FAILED, None,
+                                  f"{ref}fails: ‖P(q)‖ = |φ(q)|, φ = {f}: p0²‖q‖^{{2(σ−1)}} − φ² = {g} is "
+                                  f"{found[1]} < 0 at q = {found[0]} (exact)")
+        return Result("hypothesis", self.name, status, res.margin.lo if res.margin is not None else None,
+                      f"{ref}‖P(q)‖ = |φ(q)|, φ = {f}: p0²‖q‖^{{2(σ−1)}} − φ² = {g} on ‖q‖ = 1: {res.detail}"
+                      + ("; g ≥ 0 at that point (equality in (4)): not refuted, and not shown without the "
+                         "strict test (take p0 larger)" if status is not res.status else ""))
 
     def _refuted(self, f, c, s, degs, ref) -> Result:
         """φ of degree ≠ σ − 1: |φ(ρu)|/‖ρu‖^{σ−1} is unbounded as ρ → 0 or ∞; an exact point where (4) fails."""
@@ -139,6 +155,15 @@ class SkewBound:
                                   f"({pt[X[0]]}, {pt[X[1]]}) ‖P(q)‖ = {lhs} > p0‖q‖^(σ−1) = {rhs} (exact)")
         return Result("hypothesis", self.name, Status.UNDECIDED, None,
                       f"{ref}φ = {f} has degree(s) {sorted(degs)} ≠ σ − 1 = {s - 1}, but no point found")
+
+
+def _negative_point(g, grid: int = 96):
+    """A rational point (1 − s², 2s), s = 4k/grid, |k| ≤ grid, or (0, 1), where the binary form g < 0 (exact)."""
+    for p in [(1 - s * s, 2 * s) for s in (sympy.Rational(4 * k, grid) for k in range(-grid, grid + 1))] + [(0, 1)]:
+        value = sympy.expand(g.xreplace(dict(zip(X, p))))
+        if value.is_negative:
+            return p, value
+    return None
 
 
 positive_definite = FormHypothesis("Pi + tau*Pi~ positive definite", Pi + tau * Pi_t, reference="(Theorem 1)")

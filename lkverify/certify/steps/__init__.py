@@ -7,7 +7,8 @@
   region that bounds them.
 * :mod:`.rules` — the checked rules a proof names (triangle, Cauchy–Schwarz with an
   operator norm, ‖a × b‖ ≤ ‖a‖‖b‖, unit-vector identities, Young, Hölder on a window,
-  a bound on a weight, a template constant over a chart).
+  a bound on a weight, a template constant over a chart, ‖F(v)‖ ≤ κ‖v‖^k for a homogeneous
+  polynomial field F).
 * :mod:`.witnesses` — adversarial witnesses: states with piecewise-constant histories,
   pushed by local optimisation, rechecked in interval arithmetic.
 * :mod:`.memory` — memory integrals ∫_0^t κ(t − ξ)‖v(ξ)‖^p dξ as measures, and their rules
@@ -27,13 +28,14 @@ from .memory import (Evaluated, KernelBound, MemoryHolder, MemoryKrasovskii, Mem
                      memory_integral_of, memory_measure)
 from .quadratic import BoundClaim, QuadraticForms, StepResult, quadratic_upper_bound
 from .rules import (CauchySchwarz, Context, Equal, Nonpositive, Printed, Rayleigh, Template, WindowWeight, Young,
-                    crossed, integral_of, measured, scaled, unit)
+                    crossed, homogeneous_field, integral_of, measured, scaled, unit)
 from .witnesses import UnsupportedClaim, Witness, search_witness
 from .timevarying import TimeVaryingRate, UpperBound, sup_in_t, sup_on
 
 __all__ = ["BoundClaim", "CauchySchwarz", "ChainResult", "Context", "Decay", "Equal", "Measure", "Nonpositive",
            "Printed", "QuadraticForms", "Rayleigh", "Region", "StepResult", "Template", "TermBound", "TermResult",
-           "TermwiseBound", "UnsupportedClaim", "WindowWeight", "Witness", "Young", "crossed", "integral_of",
+           "TermwiseBound", "UnsupportedClaim", "WindowWeight", "Witness", "Young", "crossed", "homogeneous_field",
+           "integral_of",
            "measured", "norm_measure", "quadratic_upper_bound", "scaled", "search_witness", "sup_norm", "unit",
            "window_integral_measure", "window_norm",
            "Evaluated", "KernelBound", "MemoryHolder", "MemoryKrasovskii", "MemoryMeasure", "MemoryWeight",

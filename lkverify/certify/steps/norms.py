@@ -20,7 +20,7 @@ from ..matrices import matrix_positive_definite
 from .context import Condition, Context, _cond, _sign
 from .measures import Measure
 
-__all__ = ["Norm", "conjugate_exponents", "operator_norm_conditions", "pointwise_constant", "resolve_norm"]
+__all__ = ["FieldNorm", "Norm", "conjugate_exponents", "operator_norm_conditions", "pointwise_constant", "resolve_norm"]
 
 
 # -- norm trees -------------------------------------------------------------------------------
@@ -45,6 +45,109 @@ class Norm:
             if isinstance(p, Norm):
                 out += p.all_conditions()
         return out
+
+
+#: the branch-and-bound work of one field constant κ ≥ max‖F(u)‖ (boxes only: deterministic)
+FIELD_BOXES = 50_000
+
+
+@dataclasses.dataclass(frozen=True)
+class FieldNorm(Norm):
+    """‖F(v)/κ‖ ≤ ‖v‖^k for a polynomial field F homogeneous of degree k (see ``rules.homogeneous_field``).
+
+    ``data`` is (F in the plain variables, the variables, the measure, k, κ, pointwise?).  The
+    side conditions, each decided: the vector is F(v)/κ for the measure's vector v (exactly);
+    F has numeric coefficients after the values and every component is a form of degree k
+    (exact, so ‖F(ρu)‖ = ρ^k‖F(u)‖); κ > 0; κ²‖x‖^{2k} − ‖F(x)‖² ≥ 0 for every x — identically
+    0 (exact), or positive on the unit sphere (certified with arb by
+    :func:`lkverify.certify.forms.homogeneous_positive_on_sphere`), or refuted at a rational point.
+    """
+
+    def resolve(self, vec, ctx, vector):
+        field, xs, measure, k, kappa, pointwise = self.data
+        k, kappa = ctx.at(k), ctx.at(kappa)
+        F = sympy.Matrix(ctx.at(sympy.Matrix(field)))
+        v = sympy.Matrix(measure.vector)
+        if pointwise and measure.kind == "norm":
+            v = v.subs(t, xi)
+        symbol = measure.pointwise_symbol if pointwise else measure.symbol
+        target = F.xreplace(dict(zip(xs, list(v)))) / kappa
+        if target.shape != vec.shape or not all(ctx.zero(x) for x in vec - target):
+            return None, [_cond("the vector is F(v)/κ (the field at the measure's vector)", False,
+                                f"{list(vec)} is not {list(target)}")]
+        conds = [_cond(f"the vector is F(v)/κ, F = {list(F)}, v the vector of {measure.name}", True)]
+        k_ok = bool(k.is_Integer and k > 0)
+        conds.append(_cond(f"the degree k = {k} is a positive integer", k_ok or (None if k.free_symbols else False)))
+        others = set().union(*(sympy.sympify(c).free_symbols for c in F)) - set(xs)
+        conds.append(_cond("F has numeric coefficients", not others or None,
+                           f"free symbols {sorted(map(str, others))}" if others else ""))
+        if not all(c.status.is_proof for c in conds):
+            return None, conds
+        bad = []
+        for i, comp in enumerate(F):
+            comp = sympy.expand(comp)
+            if comp == 0:
+                continue
+            try:
+                degs = {sum(m) for m in sympy.Poly(comp, *xs).monoms()}
+            except sympy.PolynomialError:
+                return None, conds + [_cond("F is a polynomial field", None, f"component {i + 1}: {comp}")]
+            if degs != {k}:
+                bad.append(f"component {i + 1} = {comp} has degree(s) {sorted(degs)}")
+        conds.append(_cond(f"every component of F is a form of degree {k} (F(ρu) = ρ^k F(u))", not bad,
+                           "; ".join(bad)))
+        sk = _sign(kappa)
+        conds.append(_cond(f"κ = {kappa} > 0", True if sk == 1 else (False if kappa.is_nonpositive else None),
+                           "" if sk == 1 else "κ ≤ 0" if kappa.is_nonpositive else "the sign of κ is not known"))
+        if not all(c.status.is_proof for c in conds):
+            return None, conds
+        conds.append(_field_constant(F, xs, k, kappa, ctx))
+        return symbol**k, conds
+
+
+def _field_constant(F, xs, k, kappa, ctx) -> Condition:
+    """κ ≥ max_{‖u‖=1} ‖F(u)‖: κ²‖x‖^{2k} − ‖F(x)‖² ≥ 0, a form of degree 2k decided on the unit sphere."""
+    from ...options import Budget
+    from ..forms import homogeneous_positive_on_sphere
+
+    g = sympy.expand(kappa**2 * sum((x**2 for x in xs), sympy.S.Zero) ** k - sum((c**2 for c in F), sympy.S.Zero))
+    text = f"κ = {kappa} ≥ max_(‖u‖=1) ‖F(u)‖ (κ²‖x‖^(2k) − ‖F(x)‖² ≥ 0)"
+    if g == 0:
+        return _cond(text, True, "‖F(x)‖ = κ‖x‖^k identically")
+    res = homogeneous_positive_on_sphere(g, xs, name="κ²‖x‖^(2k) − ‖F(x)‖²",
+                                         budget=Budget(seconds=ctx.seconds_left(None), boxes=FIELD_BOXES))
+    if res.status.is_proof:
+        return Condition(text, Status.CERTIFIED, res.detail)
+    if res.status is Status.FAILED and res.witness is not None:
+        # the sphere test is strict (> 0); ≥ 0 fails only where the form is < 0 (exact, at a rational point)
+        point = [sympy.Rational(p_.numerator, p_.denominator) if hasattr(p_, "numerator") else sympy.sympify(p_)
+                 for p_ in res.witness]
+        value = sympy.expand(g.xreplace(dict(zip(xs, point))))
+        if not value.is_negative and len(xs) == 2:
+            found = _negative_point(g, xs)
+            point, value = (list(found[0]), found[1]) if found else (point, value)
+        if value.is_negative:
+            norm_f = sympy.sqrt(sum((c.xreplace(dict(zip(xs, point))) ** 2 for c in F), sympy.S.Zero))
+            return Condition(text, Status.FAILED, f"at x = ({', '.join(map(str, point))}) ‖F(x)‖ = {norm_f} > "
+                             f"κ‖x‖^k (κ²‖x‖^(2k) − ‖F(x)‖² = {value}, exact)")
+        return Condition(text, Status.UNDECIDED, f"κ²‖x‖^(2k) − ‖F(x)‖² = {value} at x = "
+                         f"({', '.join(map(str, point))}): ≥ 0 there, but a zero on the sphere is not decided "
+                         f"(take κ larger)")
+    return Condition(text, Status.UNDECIDED, res.detail)
+
+
+def _negative_point(g, xs, grid: int = 96):
+    """A rational point of the unit circle's parametrisation where the binary form g < 0 (exact), or None.
+
+    x = (1 − s², 2s)/(1 + s²) scaled by 1 + s² (g homogeneous: the sign is that on the circle), s = k/grid·4
+    for |k| ≤ grid, and x = (0, 1): the strict sphere test may stop at a zero of g, which refutes no "≥ 0".
+    """
+    pts = [(1 - s * s, 2 * s) for s in (sympy.Rational(4 * k, grid) for k in range(-grid, grid + 1))] + [(0, 1)]
+    for p in pts:
+        value = sympy.expand(g.xreplace(dict(zip(xs, p))))
+        if value.is_negative:
+            return p, value
+    return None
 
 
 def _window_factor(g, lo, hi, measure: Measure, k, holder, ctx: Context, *, lower=False):

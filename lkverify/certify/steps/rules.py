@@ -67,12 +67,12 @@ from ..matrices import matrix_positive_definite
 from .context import (Application, Condition, Context, _abs_factor, _cond, _factor_sign, _sign, decided,  # noqa: F401
                       nonnegative, sign_of)
 from .measures import Measure
-from .norms import (Norm, _integrand, _resolve_norm, _window_factor, conjugate_exponents,  # noqa: F401
+from .norms import (FieldNorm, Norm, _integrand, _resolve_norm, _window_factor, conjugate_exponents,  # noqa: F401
                     operator_norm_conditions, pointwise_constant, resolve_norm)
 
 __all__ = ["Application", "CauchySchwarz", "Context", "Equal", "Nonpositive", "Norm", "Printed", "Rayleigh", "Rule",
            "Template", "WindowWeight", "Young", "Homogeneous", "crossed", "integral_of", "mapped", "measured", "nonnegative",
-           "scaled", "summed", "unit", "decided", "sign_of", "ProductCS", "resolve_norm"]
+           "scaled", "summed", "unit", "decided", "sign_of", "ProductCS", "resolve_norm", "homogeneous_field"]
 
 
 # -- norm trees: the constructors (the class and how a tree is checked: steps.norms) ---------------
@@ -159,6 +159,61 @@ def scaled(factor, inner: Norm) -> Norm:
                  "" if nonnegative(c) else "not shown nonnegative")
     return Norm(f"|c|·‖v‖ (c = {c})", sympy.ImmutableMatrix(sympy.Matrix(inner.vector) * c),
                 None if inner.bound is None else c * inner.bound, (inner,), (cond,), data=(c,))
+
+
+def homogeneous_field(field, variables, measure: Measure, *, degree, kappa, at=None) -> Norm:
+    """‖F(v)‖ ≤ κ‖v‖^k for a polynomial field F homogeneous of degree k, as the tree of F(v)/κ with bound ‖v‖^k.
+
+    ``field`` is F written in the plain ``variables`` (a column, e.g. ∂Π̃/∂x of a form Π̃ of
+    degree k + 1), ``measure`` the measure whose vector v is substituted (``at=xi``: its
+    pointwise norm inside a window integral).  The tree bounds the vector F(v)/κ by ‖v‖^k, so
+    that κ goes into the weight of :func:`integral_of` (``weight=kappa * g``), where the
+    integrand g(ξ)F(v(ξ)) = κg(ξ)·F(v(ξ))/κ is matched.  κ is an expression of the
+    parameters (a declared constant, so that a wrong one can be stated and refuted).
+
+    ==============================  ==========================================================
+    licenses                        ‖F(v)‖ ≤ κ‖v‖^k for every v (so ‖F(v)/κ‖ ≤ ‖v‖^k)
+    side conditions                 the vector is F(v)/κ exactly; F has numeric coefficients
+                                    and each component is a form of degree k (exact); κ > 0;
+                                    κ²‖x‖^{2k} − ‖F(x)‖² ≥ 0: identically 0 (exact) or
+                                    positive on the unit sphere (certified with arb), refuted
+                                    at a rational point otherwise
+    ==============================  ==========================================================
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, t, window_integral, xi
+    >>> from lkverify.certify.steps.measures import norm_measure, window_integral_measure
+    >>> P = Parameters(); x, y = Vector("x", 2), Vector("y", 2)
+    >>> sys_ = System([Equation(x, [Term(-x(t))]), Equation(y, [Term(-y(t))])], parameters=P)
+    >>> w, K = norm_measure("w", y(t)), window_integral_measure("K", x(xi), p=3, window=1)
+    >>> ctx = Context(sys_, P.resolve({}), {"w": w, "K": K})
+    >>> X = sympy.symbols("x1 x2", real=True)
+    >>> F = sympy.Matrix([X[0] ** 3, X[1] ** 3])                 # ∂/∂x (x1⁴ + x2⁴)/4, max‖F(u)‖ = 1
+    >>> J = window_integral(F.xreplace(dict(zip(X, list(x(xi))))), 1)
+    >>> def tree(kappa):
+    ...     return integral_of(homogeneous_field(F, X, K, degree=3, kappa=kappa, at=xi), measure=K, power=3,
+    ...                        weight=kappa)
+    >>> app = CauchySchwarz(y(t), J, (measured(w), tree(1))).apply(y(t).dot(J), "upper", ctx)
+    >>> app.status.value, app.bound                   # κ = 1 is the maximum, attained at u = e1: not decided
+    ('undecided', K*w)
+    >>> app = CauchySchwarz(y(t), J, (measured(w), tree(sympy.Rational(101, 100)))).apply(y(t).dot(J), "upper", ctx)
+    >>> app.status.value, app.bound
+    ('certified', 101*K*w/100)
+    >>> CauchySchwarz(y(t), J, (measured(w), tree(sympy.Rational(9, 10)))).apply(y(t).dot(J), "upper",
+    ...                                                                              ctx).status.value
+    'failed'
+    """
+    xs = tuple(variables)
+    F = sympy.ImmutableMatrix(sympy.Matrix(field))
+    vec = sympy.Matrix(measure.vector)
+    if at is not None and measure.kind == "norm":
+        vec = vec.subs(t, at)
+    k, c = sympy.sympify(degree), sympy.sympify(kappa)
+    return FieldNorm(f"‖F(v)‖ ≤ κ‖v‖^k (F homogeneous of degree {k})",
+                     sympy.ImmutableMatrix(F.xreplace(dict(zip(xs, list(vec)))) / c), None,
+                     data=(F, xs, measure, k, c, at is not None))
 
 
 def summed(*parts: Norm) -> Norm:
