@@ -529,8 +529,8 @@ class _State:
         """(label, choices) to try on a piece, the search's only when the earlier ones did not close.
 
         The search runs at the corner whose steps' right-hand sides are closest to the uniform ones
-        over the piece (``last``: the steps checked at the earlier choices), else at the corner of
-        the smallest hypothesis margins: there the choices must be hardest (a heuristic; what is
+        over the piece (``last``: the steps checked at the earlier choices), then at the corner of
+        the smallest hypothesis margins: where the choices must be hardest (a heuristic; what is
         proved does not depend on it)."""
         yield "the documented choices", documented
         if hint:
@@ -540,20 +540,22 @@ class _State:
         free = list(getattr(job, "free", None) or {})
         if search is None or not getattr(job, "steps", False) or any(k in self.values for k in free):
             return
-        corner = _worst_corner(box, last, intervals, fixed) if all(r in last for r in ("lower", "upper", "vdot")) \
+        worst = _worst_corner(box, last, intervals, fixed) if all(r in last for r in ("lower", "upper", "vdot")) \
             else None
-        corner = corner or _tightest_corner(box, margins, intervals, fixed)
-        key = tuple(sorted((k, str(v)) for k, v in corner.items()))
-        if key not in self.searched:
-            say(f"{self.theorem.qualified_name}: searching {', '.join(free)} at the point "
-                + ", ".join(f"{k} = {v}" for k, v in corner.items()))
-            found, _ = search(self.theorem.qualified_name,
-                              self.theorem.parameters.resolve({**{k: v for k, v in documented.items()
-                                                                  if k not in free}, **self.point_values(corner)},
-                                                              use_defaults=True), progress=say)
-            self.searched[key] = None if found is None else {**documented, **{k: str(v) for k, v in found.items()}}
-        where = ", ".join(f"{k} = {v}" for k, v in corner.items())
-        yield f"the choices found by the search at {where}", self.searched[key]
+        tightest = _tightest_corner(box, margins, intervals, fixed)
+        for corner in ([worst] if worst else []) + ([tightest] if tightest != worst else []):
+            key = tuple(sorted((k, str(v)) for k, v in corner.items()))
+            if key not in self.searched:
+                say(f"{self.theorem.qualified_name}: searching {', '.join(free)} at the point "
+                    + ", ".join(f"{k} = {v}" for k, v in corner.items()))
+                found, _ = search(self.theorem.qualified_name,
+                                  self.theorem.parameters.resolve({**{k: v for k, v in documented.items()
+                                                                      if k not in free}, **self.point_values(corner)},
+                                                                  use_defaults=True), progress=say)
+                self.searched[key] = None if found is None else {**documented,
+                                                                 **{k: str(v) for k, v in found.items()}}
+            where = ", ".join(f"{k} = {v}" for k, v in corner.items())
+            yield f"the choices found by the search at {where}", self.searched[key]
 
     def _chain_at(self, box, sym_values, intervals, fixed, cap, say):
         """(rows, checked, cut, failing, decay link) of the steps and the decay at these values."""
