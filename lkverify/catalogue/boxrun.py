@@ -320,7 +320,8 @@ def _admissible_over_box(P, values: Mapping, box: ParameterBox) -> None:
 
 
 def run_over_box(theorem, values: Mapping, box, *, budget: float | None = None,
-                 progress: Callable[[str], None] | None = None, max_boxes: int = DEFAULT_MAX_BOXES) -> BoxReport:
+                 progress: Callable[[str], None] | None = None, max_boxes: int = DEFAULT_MAX_BOXES,
+                 hint: Mapping | None = None) -> BoxReport:
     """The chain of ``theorem`` for every point of ``box``, split until it closes (see the module).
 
     Parameters
@@ -334,6 +335,8 @@ def run_over_box(theorem, values: Mapping, box, *, budget: float | None = None,
     progress : callable, optional
     max_boxes : int
         The work limit: pieces whose chain is run.
+    hint : mapping, optional
+        Choices to try after the documented ones and before a search (a neighbouring cell's).
 
     Raises
     ------
@@ -359,7 +362,7 @@ def run_over_box(theorem, values: Mapping, box, *, budget: float | None = None,
     box = _validated(theorem, values, box)
     state = _State(theorem, dict(values))
     theorem.parameters.resolve(state.point_values(box.center()), use_defaults=True)  # the fixed values admissible
-    queue, leaves, checked = [(box, None)], [], 0
+    queue, leaves, checked = [(box, dict(hint) if hint else None)], [], 0
     with work_limits():
         while queue:
             piece_box, hint = queue.pop(0)
@@ -534,7 +537,7 @@ class _State:
         proved does not depend on it)."""
         yield "the documented choices", documented
         if hint:
-            yield "the choices of the enclosing piece", {**documented, **hint}
+            yield "the choices of the enclosing piece (or a neighbouring cell)", {**documented, **hint}
         job = self.theorem.constants
         search = getattr(job, "search_choices", None)
         free = list(getattr(job, "free", None) or {})

@@ -24,7 +24,8 @@ import sympy
 
 from ..errors import InputError, InternalError
 
-__all__ = ["PROVE_MAX_BOXES", "cell_box", "in_region_run", "prove_cell", "prove_grid", "theorem_values"]
+__all__ = ["PROVE_MAX_BOXES", "cell_box", "in_region_run", "prove_cell", "prove_cells", "prove_grid",
+           "theorem_values"]
 
 #: pieces of one cell's subdivision (the work limit of a cell)
 PROVE_MAX_BOXES = 3
@@ -62,8 +63,20 @@ def theorem_values(plan) -> dict:
     return {k: v for k, v in values.items() if k not in plan.swept_parameters}
 
 
+def prove_cells(theorem_name: str, values: Mapping, cells, **kw) -> list:
+    """Neighbouring cells one after the other, each trying first the choices that closed the one before
+    (a search of the choices costs more than a chain): [(k, result of :func:`prove_cell`)]."""
+    out, hint = [], None
+    for k, bounds in cells:
+        res = prove_cell(theorem_name, values, bounds, hint=hint, **kw)
+        found = json.loads(res["choices"]) if res["choices"] else []
+        hint = found[0] if found else hint
+        out.append((k, res))
+    return out
+
+
 def prove_cell(theorem_name: str, values: Mapping, bounds: Mapping, *, max_boxes: int = PROVE_MAX_BOXES,
-               equilibrium: Mapping | None = None, check: bool = True) -> dict:
+               equilibrium: Mapping | None = None, check: bool = True, hint: Mapping | None = None) -> dict:
     """The chain of a theorem over one cell: {status, choices, detail, fraction, envelope}.
 
     A cell that reaches inadmissible values (a matrix not positive definite at its edge) is
@@ -74,7 +87,7 @@ def prove_cell(theorem_name: str, values: Mapping, bounds: Mapping, *, max_boxes
 
     (theorem,) = find_items(theorem_name)
     try:
-        rep = run_over_box(theorem, dict(values), dict(bounds), max_boxes=max_boxes)
+        rep = run_over_box(theorem, dict(values), dict(bounds), max_boxes=max_boxes, hint=hint)
     except InputError as exc:
         return {"status": "undecided", "choices": "", "detail": f"not checked: {exc}", "fraction": "0",
                 "envelope": np.nan}
@@ -216,31 +229,63 @@ def prove_grid(plan, grid, checks: Mapping, options, deadline=None, progress=Non
             progress(count[0], len(jobs), time.monotonic() - start)
 
     kw = dict(max_boxes=options.prove_max_boxes, equilibrium=equilibrium)
+    tasks = _segments(jobs, grid, options)
     if options.scheduler == "synchronous":
-        for short, name, k in jobs:
-            if deadline is not None and time.monotonic() > deadline:
-                break
-            record(short, k, prove_cell(name, values, cell_box(grid, k), **kw))
+        for short, name, ks in tasks:
+            for k in ks:
+                if deadline is not None and time.monotonic() > deadline:
+                    return out
+                hint = _last_choices(out, short, ks, k)
+                record(short, k, prove_cell(name, values, cell_box(grid, k), hint=hint, **kw))
         return out
     from .engine import _client
 
     with _client(options) as client:
         from distributed import as_completed
 
-        futures = {client.submit(prove_cell, name, values, cell_box(grid, k), pure=False, **kw): (short, k)
-                   for short, name, k in jobs}
+        futures = {client.submit(prove_cells, name, values, [(k, cell_box(grid, k)) for k in ks], pure=False,
+                                 **kw): (short, ks) for short, name, ks in tasks}
         remaining = None if deadline is None else max(0.0, deadline - time.monotonic())
         try:
             for fut in as_completed(futures, timeout=remaining):
-                short, k = futures[fut]
+                short, ks = futures[fut]
                 if fut.status == "error":
                     exc = fut.exception()
                     if isinstance(exc, InternalError):
                         raise exc
-                    record(short, k, {"status": "undecided", "choices": "", "envelope": np.nan,
-                                      "detail": f"failed on a worker: {type(exc).__name__}: {exc}"})
+                    for k in ks:
+                        record(short, k, {"status": "undecided", "choices": "", "envelope": np.nan,
+                                          "detail": f"failed on a worker: {type(exc).__name__}: {exc}"})
                     continue
-                record(short, k, fut.result())
+                for k, res in fut.result():
+                    record(short, k, res)
         except TimeoutError:
             client.cancel(list(futures))
     return out
+
+
+#: cells per task of a proved sweep (run in order along the first axis, each hinting the next)
+SEGMENT = 4
+
+
+def _segments(jobs, grid, options) -> list:
+    """The jobs as runs of neighbouring cells along the first axis: [(short, name, [k, …])]."""
+    rows: dict = {}
+    for short, name, k in jobs:
+        idx = grid.index(k)
+        rows.setdefault((short, name, idx[1:]), []).append(k)
+    out = []
+    for (short, name, _), ks in rows.items():
+        ks = sorted(ks, key=lambda k: grid.index(k)[0])
+        out += [(short, name, ks[i:i + SEGMENT]) for i in range(0, len(ks), SEGMENT)]
+    return out
+
+
+def _last_choices(out, short, ks, k):
+    """The choices of the cell before ``k`` in its segment (None for the first or when it found none)."""
+    i = ks.index(k)
+    if i == 0:
+        return None
+    text = out[f"proved_choices:{short}"][ks[i - 1]]
+    found = json.loads(text) if text else []
+    return found[0] if found else None
