@@ -444,7 +444,9 @@ class _State:
             given[k] = v
         sym_values = ResolvedValues({**everything, **boxed, **{n: s_ for n, s_ in symbols.items()
                                                               if kinds[n] is not None}})
-        sym_values.from_float = frozenset(getattr(everything, "from_float", ())) | (box.from_float & set(P.names))
+        floated_written = {k for k, v in written.items() if {str(s_) for s_ in v.free_symbols} & box.from_float}
+        sym_values.from_float = frozenset(getattr(everything, "from_float", ())) | (box.from_float & set(P.names)) \
+            | floated_written  # a value written in a variable with a float end went through floating point
         given.from_float = frozenset(getattr(given, "from_float", ())) | (box.from_float & set(scalars_fixed))
         return given, sym_values, {symbols[n]: b for n, b in moving.items()}, fixed
 

@@ -242,3 +242,11 @@ def test_theorem3_over_b_and_the_gain_h_of_f_around_fig6():
     assert rep.status is BoxStatus.ESTABLISHED, rep.verdict
     kappa = next(r for r in rep.pieces[0].report.results if "(s×r)ᵀF⁻¹Θω ≤" in r.name)
     assert "parameter box" in str(kappa.value)             # κ1 is a supremum over the chart × h ∈ [9/10, 11/10]
+
+
+def test_a_float_end_of_a_written_variable_makes_what_depends_on_it_at_most_certified():
+    rep = TOY.run({"k": 2 * G}, box={"g": (0.25, 1)})
+    assert rep.status is BoxStatus.ESTABLISHED
+    rows = {r.name: r for r in rep.pieces[0].report.results}
+    assert rows["k > 0"].status is Status.CERTIFIED
+    assert rows["V̇ ≤ W"].status is Status.CERTIFIED          # −k‖x‖² ≤ −k n² with k = 2g, g from a float
