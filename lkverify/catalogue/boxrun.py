@@ -61,7 +61,8 @@ __all__ = ["BoxPiece", "BoxReport", "BoxStatus", "DEFAULT_MAX_BOXES", "FailingPo
 DEFAULT_MAX_BOXES = 16
 
 #: the region of the decay is a choice of the proof: over a box it is tried as stated, then shrunk by these
-#: factors (V̇ ≤ W proved on a region holds on every smaller one); the first that closes is reported
+#: factors (its parameters in the choices, so a check at a point repeats the proof; or, when a bound is not
+#: a parameter, the decay's region itself: V̇ ≤ W proved on a region holds on every smaller one)
 REGION_FACTORS = (1, sympy.Rational(1, 2), sympy.Rational(1, 4), sympy.Rational(1, 8))
 
 _SCALARS = (ParameterKind.REAL, ParameterKind.POSITIVE, ParameterKind.NONNEGATIVE, ParameterKind.DELAY)
@@ -507,15 +508,20 @@ class _State:
         note = f" (with {', '.join(moving)} symbolic: for every value)" if moving else ""
         results += [dataclasses.replace(r, detail=r.detail + note) if r.status is Status.EXACT else r for r in claims]
         tried, at, last = [], None, {}
-        for label, chosen in self._candidates(box, documented, hint, margins, intervals, fixed, say, last):
-            if chosen is None or chosen in tried:
-                continue
-            tried.append(chosen)
-            _, sym_values, _, _ = self._values(box, chosen)
-            rows, checked, cut, failing, decay = self._chain_at(box, sym_values, intervals, fixed, cap, say)
-            last.update(checked)
-            at = label
-            if failing is not None or (decay is not None and decay.status.is_proof) or not checked:
+        closed = False
+        for label, base in self._candidates(box, documented, hint, margins, intervals, fixed, say, last):
+            for chosen, shrunk in self._shrunk(base):
+                if chosen is None or chosen in tried:
+                    continue
+                tried.append(chosen)
+                _, sym_values, _, _ = self._values(box, chosen)
+                rows, checked, cut, failing, decay = self._chain_at(box, sym_values, intervals, fixed, cap, say)
+                last.update(checked)
+                at = label + shrunk
+                closed = failing is not None or (decay is not None and decay.status.is_proof) or not checked
+                if closed or decay is None:  # a shrunk region only helps the decay
+                    break
+            if closed:
                 break
         links = th.chain(results + rows, steps=checked, decay=decay, cut=cut)
         verdict = th._verdict(results + rows, {}, None, checked, decay, cut=cut, at=f"every point of {box}")
@@ -529,6 +535,28 @@ class _State:
         if not th.steps:  # nothing a split can change: the theorem has no bound steps
             return BoxPiece(box, BoxStatus.UNDECIDED, report, note=verdict)
         return BoxPiece(box, BoxStatus.UNDECIDED, report, choices=dict(shown))
+
+    def region_names(self) -> list | None:
+        """The parameters the V̇ step's region bounds are (``delta_e``, ``delta_w``), or None when a bound
+        is not one scalar parameter (then the decay shrinks the region itself, :data:`REGION_FACTORS`)."""
+        vdot = next((st for st in self.theorem.steps if st.role == "vdot"), None)
+        if vdot is None or vdot.region is None:
+            return None
+        P = self.theorem.parameters
+        by_symbol = {P[n].obj: n for n in P.names if P[n].kind in _SCALARS}
+        names = [by_symbol.get(sympy.sympify(b)) for b in vdot.region.bounds.values()]
+        return None if None in names else names
+
+    def _shrunk(self, chosen):
+        """(choices, note): the choices, then with the region's parameters shrunk by :data:`REGION_FACTORS`
+        (the region is a choice of the proof; recorded in the choices, so a check at a point repeats it)."""
+        yield chosen, ""
+        names = self.region_names()
+        if chosen is None or not names or not all(n in chosen for n in names):
+            return
+        for f in REGION_FACTORS[1:]:
+            yield ({**chosen, **{n: str(sympy.Rational(chosen[n]) * f) for n in names}},
+                   f", with the region shrunk by {f}")
 
     def _candidates(self, box, documented, hint, margins, intervals, fixed, say, last):
         """(label, choices) to try on a piece, the search's only when the earlier ones did not close.
@@ -628,7 +656,7 @@ class _State:
             return [], Status.UNDECIDED, f"the steps' bounds cannot be made uniform over the box: {exc}"
         region = getattr(checked.get("vdot", (None,))[0], "region", None)
         first = None
-        for factor in REGION_FACTORS if region is not None else (1,):
+        for factor in REGION_FACTORS if region is not None and self.region_names() is None else (1,):
             scaled = None if factor == 1 else region.scaled(factor)
             out, how = _capped(cap, lambda: self.theorem.decay.certify(uniform, sym_values, budget=None, progress=say,
                                                                         parameter_box=intervals, region=scaled))
