@@ -1,6 +1,7 @@
 """Benchmark: the proved layer of a sweep (``sweep … --prove``), cells per minute, and 2 workers over 1.
 
 Run:  python3 benchmarks/bench_prove.py [--b 13] [--h 10] [--b-range -3:0] [--h-range 1/10:2] [--workers 1,2]
+      [--budget SECONDS]
 
 Paper 002, Fig. 6 (a = 0, τ = 1, μ = 2, F = diag(h,h,h)), b and h swept as in the issue's acceptance
 (13 × 10 cells by default), each cell a box on which Theorem 3's chain is run
@@ -27,7 +28,7 @@ def one(workers: int, args, folder: Path) -> dict:
     res = sweep("aleksandrov2023.fig6", grid=[f"b={args.b_range}:{args.b}", f"h={args.h_range}:{args.h}"],
                 sets=["F=diag(h,h,h)"], out=folder / f"prove-{workers}.parquet",
                 options=SweepOptions(workers=workers, prove=True, t_end=args.t_end, fresh=True,
-                                     prove_max_boxes=args.max_boxes))
+                                     prove_max_boxes=args.max_boxes, budget=args.budget))
     wall = time.monotonic() - start
     tbl = res.table.to_pydict()
     proved = np.array(tbl["proved:theorem3"], dtype=object)
@@ -47,6 +48,7 @@ def main() -> None:
     ap.add_argument("--t-end", type=float, default=100.0)
     ap.add_argument("--max-boxes", type=int, default=3)
     ap.add_argument("--workers", default="1,2")
+    ap.add_argument("--budget", type=float, default=None, help="seconds per sweep; cells not reached are undecided")
     args = ap.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         rows = {}

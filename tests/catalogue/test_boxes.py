@@ -87,7 +87,7 @@ def test_toy_theorem_is_established_for_every_point_of_the_box():
     assert hyp.status is Status.EXACT and "over the whole box" in hyp.detail
     # the decay's rate is the uniform one: W = −k n² ≤ −(1/2) n² on the whole box, so c̃ ≤ 1
     c_tilde = next(r for r in piece.results if r.name == "c_tilde")
-    assert c_tilde.status is Status.CERTIFIED and 0 < c_tilde.value["value"] <= 1.0 + 1e-12
+    assert c_tilde.status is Status.CERTIFIED and c_tilde.value["value"] > 0 and c_tilde.value["value"] <= 1.0 + 1e-12
 
 
 def test_a_box_reaching_where_the_hypothesis_fails_is_failed_at_that_point():
@@ -110,7 +110,7 @@ def test_a_margin_interval_arithmetic_cannot_separate_is_split_and_left_undecide
     th = _theorem(hypotheses=[Hypothesis("k > 0", k), hyp])
     rep = run_over_box(th, {}, {"k": (R(1, 2), R(3, 2))}, max_boxes=15)
     assert rep.status is BoxStatus.UNDECIDED and not rep.failing and rep.exit_code == 1
-    assert 0 < rep.proved_fraction < 1 and rep.checked == 15
+    assert rep.proved_fraction > 0 and rep.proved_fraction < 1 and rep.checked == 15
     assert all(p.box.fraction_of(rep.box) <= R(1, 2) for p in rep.pieces)
 
 
