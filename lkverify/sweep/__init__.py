@@ -4,7 +4,8 @@
 Python: every grid point gets its parameter check and the catalogued theorems' hypotheses with
 margins (exact, :mod:`.plan`), the linearisation's spectral abscissa (estimated) and a simulation
 (:mod:`.evaluate`), run on Dask (:mod:`.engine`), written as a Parquet table and drawn as a map
-(:mod:`.figure`) with the paper's gains marked (:mod:`.marks`).
+(:mod:`.figure`) with the paper's gains marked (:mod:`.marks`).  With ``--prove`` every cell is
+a box on which the theorems' chains are run (:mod:`.prove`), the map's proved layer.
 """
 
 from .engine import DEFAULT_CHUNK_SIZE, SweepOptions, SweepResult, sweep
