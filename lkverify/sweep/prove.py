@@ -264,12 +264,29 @@ def prove_grid(plan, grid, checks: Mapping, options, deadline=None, progress=Non
     return out
 
 
-#: cells per task of a proved sweep (run in order along the first axis, each hinting the next)
+#: cells per task of a proved sweep at most (run in order along the first axis, each hinting the next)
 SEGMENT = 4
 
 
 def _segments(jobs, grid, options) -> list:
-    """The jobs as runs of neighbouring cells along the first axis: [(short, name, [k, …])]."""
+    """The jobs as runs of neighbouring cells along the first axis: [(short, name, [k, …])].
+
+    Runs of at most :data:`SEGMENT` cells, shorter when there would be fewer than four tasks per
+    worker (the hints save searches, the balance between workers saves more on a small grid).
+
+    >>> from types import SimpleNamespace
+    >>> from lkverify.sweep.grid import Grid
+    >>> g = Grid.parse(["b=0:1:4", "h=0:1:3"])
+    >>> jobs = [("t", "x.t", k) for k in range(g.size)]
+    >>> [ks for _, _, ks in _segments(jobs, g, SimpleNamespace(workers=1, scheduler=None))][:2]
+    [[0, 3, 6], [9]]
+    >>> len(_segments(jobs, g, SimpleNamespace(workers=2, scheduler=None)))
+    12
+    """
+    import os
+
+    workers = 1 if options.scheduler == "synchronous" else (options.workers or os.cpu_count() or 1)
+    size = max(1, min(SEGMENT, len(jobs) // (4 * workers)))
     rows: dict = {}
     for short, name, k in jobs:
         idx = grid.index(k)
@@ -277,7 +294,7 @@ def _segments(jobs, grid, options) -> list:
     out = []
     for (short, name, _), ks in rows.items():
         ks = sorted(ks, key=lambda k: grid.index(k)[0])
-        out += [(short, name, ks[i:i + SEGMENT]) for i in range(0, len(ks), SEGMENT)]
+        out += [(short, name, ks[i:i + size]) for i in range(0, len(ks), size)]
     return out
 
 
