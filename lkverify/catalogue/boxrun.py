@@ -170,6 +170,17 @@ class BoxReport:
     def failing(self) -> tuple:
         return tuple(p.failing for p in self.pieces if p.failing is not None)
 
+    def constant(self, name: str) -> tuple:
+        """``((piece box, value), …)`` of a certified constant (``delta_tilde``, ``c_tilde``, …) over the
+        established pieces: a piecewise-constant bound valid at every point of each piece (a lower bound
+        for a region's radius δ̃, the value certified for the whole piece)."""
+        out = []
+        for p in self.proved:
+            row = next((r for r in p.report.results if r.name == name and isinstance(r.value, dict)), None)
+            if row is not None and row.status.is_proof:
+                out.append((p.box, row.value.get("value")))
+        return tuple(out)
+
     @property
     def status(self) -> BoxStatus:
         if self.failing:

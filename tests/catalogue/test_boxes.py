@@ -250,3 +250,12 @@ def test_a_float_end_of_a_written_variable_makes_what_depends_on_it_at_most_cert
     rows = {r.name: r for r in rep.pieces[0].report.results}
     assert rows["k > 0"].status is Status.CERTIFIED
     assert rows["V̇ ≤ W"].status is Status.CERTIFIED          # −k‖x‖² ≤ −k n² with k = 2g, g from a float
+
+
+def test_a_certified_constant_per_piece_is_a_piecewise_bound_over_the_box():
+    rep = run_over_box(TOY, {}, {"k": ("1/2", "2")})
+    ((box, c),) = rep.constant("c_tilde")
+    assert box == rep.box and c > 0 and c <= 1 + 1e-12          # the worst point k = 1/2 bounds the whole box
+    assert rep.constant("no_such_constant") == ()
+    wide = run_over_box(TOY, {}, {"k": ("-1", "2")})             # failed: no established piece, no bound
+    assert wide.constant("c_tilde") == ()
