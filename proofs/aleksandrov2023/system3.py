@@ -50,18 +50,29 @@ PHI_COEFFS = {(2, 0): "p11", (1, 1): "p12", (0, 2): "p22"}
 _phi_defaults = {"p11": 1, "p12": "1/2", "p22": 0}
 _phi = {ij: P3.scalar(name, default=_phi_defaults[name], description=f"coefficient of q1^{ij[0]} q2^{ij[1]} in φ")
         for ij, name in PHI_COEFFS.items()}
-# parameters of the functional (П.1) (free: the identity holds for all of them)
-lam = P3.scalar("lam", positive=True, latex=r"\lambda")
-alpha = P3.scalar("alpha", positive=True, latex=r"\alpha")
-beta = P3.scalar("beta", positive=True, latex=r"\beta")
-# the region of (П.2), (П.3): max_{[t−τ,t]} ‖q(ξ)‖ ≤ δ_q, ‖q̇(t)‖ ≤ δ_v (chosen by the proof)
-delta_q = P3.scalar("delta_q", positive=True, latex=r"\delta_q", description="region: max over the window of ‖q‖")
-delta_v = P3.scalar("delta_v", positive=True, latex=r"\delta_v", description="region: ‖q̇(t)‖")
-# the parameters of Young's inequality in the chain (chosen by the proof)
-eta_w = P3.scalar("eta_w", positive=True, latex=r"\eta_w", description="Young: ‖q‖‖q̇‖ in V ≥ L")
-eta_K = P3.scalar("eta_K", positive=True, latex=r"\eta_K", description="Young: ‖q‖(∫‖q‖^{μ+1})^{μ/(μ+1)} in V ≥ L")
-eta = P3.scalar("eta", positive=True, latex=r"\eta", description="Young: ‖q̇‖‖q‖^μ in V̇ ≤ W")
-eta_j = P3.scalar("eta_j", positive=True, latex=r"\eta_j", description="Young: ‖q̇‖(∫‖q‖^{μ+1})^{μ/(μ+1)} in V̇ ≤ W")
+def declare_choices(P):
+    """The proof's free choices of Theorem 1, declared on the registry ``P``:
+    λ, α, β of the functional (П.1) (free: the identity holds for all of them), the region of (П.2),
+    (П.3) max_{[t−τ,t]} ‖q(ξ)‖ ≤ δ_q, ‖q̇(t)‖ ≤ δ_v, and the parameters of Young's inequality in the chain.
+
+    >>> names = [s.name for s in declare_choices(Parameters())]
+    >>> names[:5], len(names)
+    (['lam', 'alpha', 'beta', 'delta_q', 'delta_v'], 9)
+    """
+    return (P.scalar("lam", positive=True, latex=r"\lambda"),
+            P.scalar("alpha", positive=True, latex=r"\alpha"),
+            P.scalar("beta", positive=True, latex=r"\beta"),
+            P.scalar("delta_q", positive=True, latex=r"\delta_q", description="region: max over the window of ‖q‖"),
+            P.scalar("delta_v", positive=True, latex=r"\delta_v", description="region: ‖q̇(t)‖"),
+            P.scalar("eta_w", positive=True, latex=r"\eta_w", description="Young: ‖q‖‖q̇‖ in V ≥ L"),
+            P.scalar("eta_K", positive=True, latex=r"\eta_K",
+                     description="Young: ‖q‖(∫‖q‖^{μ+1})^{μ/(μ+1)} in V ≥ L"),
+            P.scalar("eta", positive=True, latex=r"\eta", description="Young: ‖q̇‖‖q‖^μ in V̇ ≤ W"),
+            P.scalar("eta_j", positive=True, latex=r"\eta_j",
+                     description="Young: ‖q̇‖(∫‖q‖^{μ+1})^{μ/(μ+1)} in V̇ ≤ W"))
+
+
+lam, alpha, beta, delta_q, delta_v, eta_w, eta_K, eta, eta_j = declare_choices(P3)
 
 q = Vector("q", 2)
 v = Vector("v", 2, latex=r"\dot q", text="q̇")

@@ -66,15 +66,7 @@ _phi_defaults = {"p11": 1, "p12": "1/2", "p22": 0}
 _phi = {ij: PN.scalar(name, default=_phi_defaults[name], description=f"coefficient of q1^{ij[0]} q2^{ij[1]} in φ")
         for ij, name in S3.PHI_COEFFS.items()}
 # the proof's free choices (as in system3) and the bound constant of ∂Π̃/∂q
-lam = PN.scalar("lam", positive=True, latex=r"\lambda")
-alpha = PN.scalar("alpha", positive=True, latex=r"\alpha")
-beta = PN.scalar("beta", positive=True, latex=r"\beta")
-delta_q = PN.scalar("delta_q", positive=True, latex=r"\delta_q", description="region: max over the window of ‖q‖")
-delta_v = PN.scalar("delta_v", positive=True, latex=r"\delta_v", description="region: ‖q̇(t)‖")
-eta_w = PN.scalar("eta_w", positive=True, latex=r"\eta_w", description="Young: ‖q‖‖q̇‖ in V ≥ L")
-eta_K = PN.scalar("eta_K", positive=True, latex=r"\eta_K", description="Young: ‖q‖(∫‖q‖^{μ+1})^{μ/(μ+1)} in V ≥ L")
-eta = PN.scalar("eta", positive=True, latex=r"\eta", description="Young: ‖q̇‖‖q‖^μ in V̇ ≤ W")
-eta_j = PN.scalar("eta_j", positive=True, latex=r"\eta_j", description="Young: ‖q̇‖(∫‖q‖^{μ+1})^{μ/(μ+1)} in V̇ ≤ W")
+lam, alpha, beta, delta_q, delta_v, eta_w, eta_K, eta, eta_j = S3.declare_choices(PN)
 kappa_g = PN.scalar("kappa_g", positive=True, latex=r"\kappa_g",
                     description="‖∂Π̃/∂q(q)‖ ≤ κ_g‖q‖^μ (c4 = c10 = c12; chosen by the proof)")
 
