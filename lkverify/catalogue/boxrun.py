@@ -343,7 +343,8 @@ def run_over_box(theorem, values: Mapping, box, *, budget: float | None = None,
         The fixed parameters (the rest at the paper's defaults).
     box : ParameterBox or mapping name → (lo, hi)
     budget : float, optional
-        The caller's wall-clock cap for each piece's chain (what it cuts is ``undecided``).
+        The caller's wall-clock cap of the whole run (what it cuts is ``undecided``; default none: the
+        run stops at its deterministic work limits).
     progress : callable, optional
     max_boxes : int
         The work limit: pieces whose chain is run.
@@ -375,16 +376,17 @@ def run_over_box(theorem, values: Mapping, box, *, budget: float | None = None,
     state = _State(theorem, dict(values))
     theorem.parameters.resolve(state.point_values(box.center()), use_defaults=True)  # the fixed values admissible
     queue, leaves, checked = [(box, dict(hint) if hint else None)], [], 0
+    cap = Deadline(Budget.of(budget).seconds, cap=True)  # one wall-clock cap for the whole run (none by default)
     with work_limits():
         while queue:
             piece_box, hint = queue.pop(0)
-            if checked >= max_boxes:
-                leaves.append(BoxPiece(piece_box, BoxStatus.UNDECIDED, None,
-                                       note=f"not checked: the work limit of {max_boxes} pieces was reached"))
+            if checked >= max_boxes or cap.expired:
+                why = (f"the work limit of {max_boxes} pieces was reached" if checked >= max_boxes else
+                       f"the budget of {cap.seconds:g} s was spent")
+                leaves.append(BoxPiece(piece_box, BoxStatus.UNDECIDED, None, note=f"not checked: {why}"))
                 continue
             checked += 1
             say(f"{theorem.qualified_name}: piece {checked} {piece_box}")
-            cap = Deadline(Budget.of(budget).seconds, cap=True)
             piece = state.piece(piece_box, cap, say, hint)
             if piece.status is BoxStatus.UNDECIDED and not piece_box.is_point \
                     and checked + len(queue) + 2 <= max_boxes and not piece.note:

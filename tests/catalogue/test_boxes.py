@@ -259,3 +259,11 @@ def test_a_certified_constant_per_piece_is_a_piecewise_bound_over_the_box():
     assert rep.constant("no_such_constant") == ()
     wide = run_over_box(TOY, {}, {"k": ("-1", "2")})             # failed: no established piece, no bound
     assert wide.constant("c_tilde") == ()
+
+
+def test_a_spent_budget_leaves_the_rest_undecided_never_established():
+    hyp = Hypothesis("k(k−2) + 1001/1000 > 0", k * (k - 2) + R(1001, 1000))
+    th = _theorem(hypotheses=[Hypothesis("k > 0", k), hyp])
+    rep = run_over_box(th, {}, {"k": (R(1, 2), R(3, 2))}, max_boxes=15, budget=1e-3)
+    assert rep.status is BoxStatus.UNDECIDED and rep.exit_code == 1
+    assert any("budget" in p.verdict for p in rep.pieces)
