@@ -636,11 +636,13 @@ def _constants_within_budget(item, values, args, say):
     return Report(item.qualified_name, shown, (result,), f"undecided: the time budget of {args.budget:g} s ran out"), {}
 
 
-_REPORT_ITEMS: dict = {}  # qualified name → item, inherited by the forked workers of the report
+_REPORT_ITEMS: dict = {}  # qualified name → item; a worker process fills its own on first use
 
 
 def _report_one(name: str):
     """Run one item at its defaults (in a worker): (text, JSON, holds) — plain data, picklable."""
+    if not _REPORT_ITEMS:  # a fresh worker (forkserver / spawn): load the catalogue once per process
+        _REPORT_ITEMS.update({item.qualified_name: item for pf in catalogue() for item in pf.items.values()})
     rep = _REPORT_ITEMS[name].run({})
     return rep.as_text(), rep.to_json(), rep.holds
 
@@ -663,15 +665,21 @@ def _report(*, json_out: bool, quiet: bool = False, jobs: int | None = None) -> 
         import multiprocessing
         from concurrent.futures import ProcessPoolExecutor
 
-        if "fork" in multiprocessing.get_all_start_methods():  # workers inherit the loaded catalogue
-            say(f"{len(names)} items in {jobs} worker processes", force=True)
-            with ProcessPoolExecutor(jobs, mp_context=multiprocessing.get_context("fork")) as pool:
-                submitted = {n: pool.submit(_report_one, n) for n in start_order}
-                futures = [submitted[n] for n in names]
-                outputs = []
-                for k, (n, fut) in enumerate(zip(names, futures)):
-                    outputs.append(fut.result())
-                    say(f"item {k + 1}/{len(names)} done: {n}", force=True)
+        # not "fork": a process with threads running (a test runner's, a Dask client's, a BLAS pool's) forks
+        # children that can deadlock on a lock held by another thread at the fork; that hung the slow test run
+        # in CI for over an hour. forkserver forks from a clean single-threaded server; spawn elsewhere.
+        method = "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() else "spawn"
+        context = multiprocessing.get_context(method)
+        if method == "forkserver":
+            context.set_forkserver_preload(["lkverify.cli"])  # the server imports lkverify once for all workers
+        say(f"{len(names)} items in {jobs} worker processes", force=True)
+        with ProcessPoolExecutor(jobs, mp_context=context) as pool:
+            submitted = {n: pool.submit(_report_one, n) for n in start_order}
+            futures = [submitted[n] for n in names]
+            outputs = []
+            for k, (n, fut) in enumerate(zip(names, futures)):
+                outputs.append(fut.result())
+                say(f"item {k + 1}/{len(names)} done: {n}", force=True)
     if outputs is None:
         outputs = []
         for k, item in enumerate(todo):

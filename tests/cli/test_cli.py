@@ -142,6 +142,28 @@ def test_bare_command_reports_the_catalogue(capsys):
     assert "verdict" in out
 
 
+class _PoolStarted(BaseException):  # not caught as an internal error
+    pass
+
+
+def test_the_catalogue_report_does_not_fork_a_threaded_process(capsys, monkeypatch):
+    # os.fork() in a process with other threads (pytest-xdist's, Dask's, BLAS's) can copy a lock some thread holds
+    # into a child that then waits on it forever: the slow test run hung in CI past its 90 minutes that way
+    import concurrent.futures
+
+    seen = {}
+
+    class Recorder:
+        def __init__(self, jobs, mp_context=None):
+            seen["method"] = mp_context.get_start_method() if mp_context is not None else "default"
+            raise _PoolStarted
+
+    monkeypatch.setattr(concurrent.futures, "ProcessPoolExecutor", Recorder)
+    with pytest.raises(_PoolStarted):
+        main(["report", "--jobs", "2", "--quiet"])
+    assert seen["method"] in ("forkserver", "spawn")
+
+
 @pytest.mark.slow  # about 25 s: three checks of Theorem 2; the default run checks aleksandrov2026.theorem1
 def test_theorem2_assumption2_margin_exact_and_refuted(capsys):
     code, out, _ = run(capsys, "check", "aleksandrov2026.theorem2", "--json")
