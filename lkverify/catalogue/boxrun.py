@@ -414,6 +414,7 @@ class _State:
         self.claims = None
         self.steps: dict = {}
         self.searched: dict = {}  # the tightest corner → the choices the constants job found there
+        self.smaller_region_helps = True  # False after a decay refuted near 0 (its lowest-order part > 0)
 
     def point_values(self, point: Mapping) -> dict:
         """The given values at one point of the box (name → value; variables of given values substituted)."""
@@ -532,7 +533,10 @@ class _State:
                 last.update(checked)
                 at = label + shrunk
                 closed = failing is not None or (decay is not None and decay.status.is_proof) or not checked
-                if closed or decay is None:  # a shrunk region only helps the decay
+                # a shrunk region only helps the decay, and not one refuted by W's lowest-order part (a search
+                # heuristic: the shrunk choices re-derive W, so this may skip a closing choice; never a verdict,
+                # what it cuts short stays undecided)
+                if closed or decay is None or not self.smaller_region_helps:
                     break
             if closed:
                 break
@@ -610,6 +614,7 @@ class _State:
         th, P = self.theorem, self.theorem.parameters
         floated = P.float_symbols(sym_values)
         rows, checked, cut, failing = [], {}, {}, None
+        self.smaller_region_helps = True
         for step in th.steps:
             say(f"{th.qualified_name}: {step.name} over {box}")
             res, how = _capped(cap, lambda: self._step(step, sym_values, intervals, box))
@@ -639,19 +644,29 @@ class _State:
         return rows, checked, cut, failing, decay
 
     def _step(self, step, sym_values, intervals, box):
-        """The step's ChainResult for every point of the box (cached per sign pattern), or why not (a str)."""
-        pattern = tuple(sorted((str(s), tuple(sorted(s.assumptions0.items()))) for s in intervals))
-        key = (step.role, step.name, pattern, tuple(sorted((k, str(v)) for k, v in sym_values.items())))
+        """The step's ChainResult for every point of the box, or why not (a str).
+
+        Kept for the run, keyed by the step, the boxed symbols with their intervals and the values; the
+        region's parameters (``delta_e`` …) are left out of the key of a step not written in them (V ≥ L
+        and V ≤ U do not change when the region is shrunk)."""
+        from .items import _symbols_of
+
+        names = set(self.region_names() or ())
+        P = self.theorem.parameters
+        used = _symbols_of(step)
+        skip = {n for n in names if n in P.names and not (set(P[n].symbols) & used)}
+        key = (step.role, step.name,
+               tuple(sorted((str(s), tuple(sorted(s.assumptions0.items())), str(b)) for s, b in intervals.items())),
+               tuple(sorted((k, str(v)) for k, v in sym_values.items() if k not in skip)))
         hit = self.steps.get(key)
-        if hit is not None and not hit.box_used:
+        if hit is not None:
             return hit
         try:
             res = step.check(sym_values, parameter_box=intervals)
         except (InputError, UnsupportedInput, TypeError, ValueError, AttributeError) as exc:
-            return (f"not decided over the box: a rule of this step does not support the boxed parameters "
-                    f"symbolically ({type(exc).__name__}: {str(exc).splitlines()[0][:200]})")
-        if res.status.is_proof and not res.box_used:
-            self.steps[key] = res
+            res = (f"not decided over the box: a rule of this step does not support the boxed parameters "
+                   f"symbolically ({type(exc).__name__}: {str(exc).splitlines()[0][:200]})")
+        self.steps[key] = res
         return res
 
     def _decay(self, checked, sym_values, intervals, cap, say):
@@ -669,10 +684,13 @@ class _State:
             return [], Status.UNDECIDED, f"the steps' bounds cannot be made uniform over the box: {exc}"
         region = getattr(checked.get("vdot", (None,))[0], "region", None)
         first = None
+        self.smaller_region_helps = True
         for factor in REGION_FACTORS if region is not None and self.region_names() is None else (1,):
             scaled = None if factor == 1 else region.scaled(factor)
+            explain = {}
             out, how = _capped(cap, lambda: self.theorem.decay.certify(uniform, sym_values, budget=None, progress=say,
-                                                                        parameter_box=intervals, region=scaled))
+                                                                        parameter_box=intervals, region=scaled,
+                                                                        explain=explain))
             if how:
                 return [], Status.UNDECIDED, _cut_text(cap, how, "link")
             rows, status, detail = out
@@ -681,6 +699,9 @@ class _State:
                     detail = f"on the proof's region scaled by {factor} ({scaled.describe()}): {detail}"
                 return rows, status, detail
             first = first or out
+            if not explain.get("smaller_region_helps", True):  # refuted near 0: no smaller region helps
+                self.smaller_region_helps = False
+                break
         return first
 
 

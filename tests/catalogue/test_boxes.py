@@ -267,3 +267,20 @@ def test_a_spent_budget_leaves_the_rest_undecided_never_established():
     rep = run_over_box(th, {}, {"k": (R(1, 2), R(3, 2))}, max_boxes=15, budget=1e-3)
     assert rep.status is BoxStatus.UNDECIDED and rep.exit_code == 1
     assert any("budget" in p.verdict for p in rep.pieces)
+
+
+def test_a_decay_refuted_by_a_positive_lowest_order_part_is_not_retried_on_smaller_regions(monkeypatch):
+    # V̇ = −k‖x‖² ≤ k n² is a true (loose) step; W = k n² > 0 at n = 1 and along its whole ray near 0,
+    # so no region scaled by REGION_FACTORS can give a decay: certified once, refuted, not retried
+    loose = _theorem(vdot_bound=k * N**2, vdot_rule=Rayleigh(x(t), -EYE, factor=k, eigenvalue=1, norm_squared=N**2))
+    calls = []
+    certify = Decay.certify
+    monkeypatch.setattr(Decay, "certify", lambda self, *a, **kw: calls.append(kw.get("region")) or certify(self, *a, **kw))
+    rep = run_over_box(loose, {}, {"k": (1, 2)}, max_boxes=1)
+    assert rep.status is BoxStatus.UNDECIDED and not rep.failing                 # not a refutation of the theorem
+    decay = next(r for r in rep.pieces[0].report.results if r.name == "decay on the region")
+    assert decay.status is Status.FAILED and "no smaller region helps" in decay.detail
+    assert calls == [None]
+    # the toy's own step W = −k n²: lowest-order part negative, established on the first region
+    calls.clear()
+    assert run_over_box(TOY, {}, {"k": (1, 2)}, max_boxes=1).status is BoxStatus.ESTABLISHED and calls == [None]

@@ -114,11 +114,13 @@ class Decay:
                           derivation="the checked bound steps V ≥ L, V ≤ U, V̇ ≤ W")
 
     def certify(self, steps: Mapping, values: Mapping, *, budget=None, progress=None, claimed: Mapping | None = None,
-                region: Region | None = None, parameter_box: Mapping | None = None):
+                region: Region | None = None, parameter_box: Mapping | None = None, explain: dict | None = None):
         """(results, status, detail): the certified decay of the checked steps, or why not.
 
         ``claimed``: the constants a proof states (``c_tilde``, ``delta_tilde`` and ``l_<measure>``)
         are checked as given instead of estimated; ``region`` replaces the V̇ step's region.
+        ``explain``: a dict that gets ``smaller_region_helps`` (False when W is refuted at a point where
+        its lowest-order homogeneous part is positive: every smaller region has such a point too).
         """
         from ...errors import UnsupportedInput
         from ..decay import certify_decay, certify_model
@@ -158,9 +160,15 @@ class Decay:
             if point is not None:
                 at, value = point
                 where = ", ".join(f"{k} = {v}" for k, v in at.items())
+                near_zero = _lowest_order_positive(model, at)
+                if explain is not None:
+                    explain["smaller_region_helps"] = not near_zero
+                advice = ("W's lowest-order part is positive at that point too, so W > 0 along its ray near 0 and "
+                          "no smaller region helps: choose other functional parameters" if near_zero else
+                          "choose a smaller region or other functional parameters")
                 return [], Status.FAILED, (f"refuted on this region: at the point {where} of its box W = "
-                                           f"{float(value):.4g} ≥ 0 (rechecked in interval arithmetic), so V̇ ≤ W gives no decay there; choose a "
-                                           f"smaller region or other functional parameters")
+                                           f"{float(value):.4g} ≥ 0 (rechecked in interval arithmetic), so V̇ ≤ W "
+                                           f"gives no decay there; {advice}")
             return [], Status.UNDECIDED, (
                 "the estimator finds no admissible constants: V̇ ≥ 0 is sampled on the region or the model's "
                 "shape is not covered (choose a smaller region or other functional parameters)")
@@ -212,6 +220,43 @@ def _positive_rate_point(model, grid: int = 41):
     if sign.sign is None or sign.sign < 0 or all(x == 0 for x in at.values()):
         return None
     return at, value
+
+
+def _lowest_order_positive(model, at: Mapping) -> bool:
+    """Whether W's lowest-degree homogeneous part (in the model's variables) is > 0 at the point ``at``
+    (exact; False where W is not a polynomial in them or the sign is not decided).
+
+    Then W(εx) = ε^k (W_k(x) + O(ε)) > 0 for every small ε: every region scaled down still holds
+    a point where W > 0, and shrinking the region cannot give a decay (used to stop a search early).
+
+    >>> import sympy
+    >>> from types import SimpleNamespace
+    >>> w, e = sympy.symbols("w e", nonnegative=True)
+    >>> _lowest_order_positive(SimpleNamespace(variables=(w, e), vdot=w**2 - e**2 - w**3), {"w": 1, "e": 0})
+    True
+    >>> _lowest_order_positive(SimpleNamespace(variables=(w, e), vdot=-w**2 + w**3), {"w": 2, "e": 0})
+    False
+    >>> _lowest_order_positive(SimpleNamespace(variables=(w, e), vdot=w*e - e**2), {"w": sympy.sqrt(2), "e": 1})
+    True
+    """
+    from ..intervals import sign_of
+
+    vs = list(model.variables)
+    try:
+        poly = sympy.Poly(sympy.expand(model.vdot), *vs)
+    except (sympy.PolynomialError, sympy.GeneratorsNeeded):
+        return False
+    terms = [(sum(m), m, c) for m, c in poly.terms() if c != 0]
+    if not terms:
+        return False
+    low = min(d for d, _, _ in terms)
+    point = {v: sympy.sympify(at[str(v)]) for v in vs}  # exact numbers (a region's edge may be irrational)
+    part = sum((c * sympy.Mul(*[v ** k for v, k in zip(vs, m)]) for d, m, c in terms if d == low), sympy.S.Zero)
+    if low == 0:
+        return False  # a constant term: W(0) ≠ 0, another failure
+    value = part.xreplace(point)
+    res = sign_of(value)
+    return res.sign is not None and res.sign > 0
 
 
 def _prime_powers(expr):
