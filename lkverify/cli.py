@@ -35,6 +35,7 @@ import sys
 import time
 from pathlib import Path
 
+from . import __version__
 from .options import MAX_BUDGET_SECONDS, BudgetExceeded
 from .catalogue.loader import LOAD_LIMIT_SECONDS, catalogue, find_items
 from .errors import InputError, UnsupportedInput
@@ -83,7 +84,10 @@ def _build_parser() -> argparse.ArgumentParser:
                 "With no command: the report of every catalogued item at the papers' defaults.")
     sub = p.add_subparsers(dest="command", parser_class=_Parser)
     p.add_argument("--quiet", action="store_true", default=False, help=QUIET_HELP)
+    p.add_argument("--version", action="version", version=f"lkverify {__version__}",
+                   help="print lkverify's version (from the installed package's metadata) and exit")
     lp = sub.add_parser("list", help="list the catalogue: name, kind (theorem, check, example) and title")
+    lp.add_argument("--json", action="store_true", help="print a JSON list of objects with the keys item, kind, title")
     _add_quiet(lp)
     rp = sub.add_parser("report", help="report every catalogued item at the papers' defaults (what the bare "
                         "`lkverify` does); prints progress lines on stderr, about 1 minute")
@@ -266,6 +270,9 @@ def _dispatch(args) -> int:
     if args.command == "list":
         rows = [(f"{pf.paper}.{name}", {"Example": "example", "Check": "check"}.get(type(item).__name__, "theorem"),
                  item.title) for pf in catalogue() for name, item in pf.items.items()]
+        if getattr(args, "json", False):
+            print(json.dumps([{"item": q, "kind": k, "title": t} for q, k, t in rows], indent=2, ensure_ascii=False))
+            return 0
         width = max((len(r[0]) for r in rows), default=0)
         for qualified, kind, title in rows:
             print(f"{qualified:<{width}} {kind:<8} {title}")

@@ -25,6 +25,29 @@ def test_list(capsys):
     assert "aleksandrov2023.theorem3" in out and "aleksandrov2026.theorem1" in out
 
 
+def test_list_json_has_one_object_per_text_line(capsys):
+    code, out, _ = run(capsys, "list", "--json")
+    assert code == 0
+    rows = json.loads(out)
+    _, text, _ = run(capsys, "list")
+    assert [r["item"] for r in rows] == [line.split()[0] for line in text.splitlines()]
+    assert {r["kind"] for r in rows} <= {"theorem", "check", "example"}
+    assert {"theorem", "check", "example"} == {r["kind"] for r in rows}
+    by_item = {r["item"]: r for r in rows}
+    assert by_item["aleksandrov2023.theorem3"]["kind"] == "theorem"
+
+
+def test_version_is_the_installed_distribution_s(capsys):
+    from importlib.metadata import version
+
+    import lkverify
+
+    code, out, _ = run(capsys, "--version")
+    assert code == 0
+    assert out.strip() == f"lkverify {version('lkverify')}"
+    assert lkverify.__version__ == version("lkverify")
+
+
 @pytest.mark.slow  # about 20 s: the whole check of Theorem 3; the default run checks aleksandrov2026.theorem1
 def test_theorem3_holds_at_the_fig6_gains(capsys):
     code, out, _ = run(capsys, "check", "aleksandrov2023.theorem3", "--set", "a=0", "--set", "b=-1",
