@@ -614,7 +614,6 @@ class _State:
         th, P = self.theorem, self.theorem.parameters
         floated = P.float_symbols(sym_values)
         rows, checked, cut, failing = [], {}, {}, None
-        self.smaller_region_helps = True
         for step in th.steps:
             say(f"{th.qualified_name}: {step.name} over {box}")
             res, how = _capped(cap, lambda: self._step(step, sym_values, intervals, box))

@@ -246,15 +246,14 @@ def _lowest_order_positive(model, at: Mapping) -> bool:
         poly = sympy.Poly(sympy.expand(model.vdot), *vs)
     except (sympy.PolynomialError, sympy.GeneratorsNeeded):
         return False
-    terms = [(sum(m), m, c) for m, c in poly.terms() if c != 0]
-    if not terms:
+    if poly.is_zero:
         return False
-    low = min(d for d, _, _ in terms)
-    point = {v: sympy.sympify(at[str(v)]) for v in vs}  # exact numbers (a region's edge may be irrational)
-    part = sum((c * sympy.Mul(*[v ** k for v, k in zip(vs, m)]) for d, m, c in terms if d == low), sympy.S.Zero)
+    low = min(sum(m) for m in poly.monoms())
     if low == 0:
         return False  # a constant term: W(0) ≠ 0, another failure
-    value = part.xreplace(point)
+    part = sum((c * sympy.Mul(*[v ** k for v, k in zip(vs, m)]) for m, c in poly.terms() if sum(m) == low),
+               sympy.S.Zero)
+    value = part.xreplace({v: sympy.sympify(at[str(v)]) for v in vs})  # exact (a region's edge may be irrational)
     res = sign_of(value)
     return res.sign is not None and res.sign > 0
 
