@@ -179,21 +179,46 @@ class Deadline:
         if self.expired:
             raise BudgetExceeded(self.message())
 
-    @contextlib.contextmanager
-    def enforced(self):
+    def enforced(self) -> "_Enforced":
         """Interrupt the enclosed block when this budget, or an enclosing one, runs out (main thread only).
+
+        The alarm never interrupts the block's own entry and exit (the bookkeeping of the active
+        deadlines and of the signal handler): an alarm due there is retried after
+        :data:`RETRY_SECONDS`, so leaving the block always restores the handler and the timer.
 
         Raises
         ------
         BudgetExceeded
             On entry if this or an enclosing enforced budget is already spent, and from
             inside the block (at the next Python bytecode) when one runs out.
+
+        Examples
+        --------
+        >>> import signal
+        >>> with Deadline(5).enforced():
+        ...     signal.getsignal(signal.SIGALRM) is _on_alarm
+        True
+        >>> signal.getsignal(signal.SIGALRM) is _on_alarm, _active
+        (False, [])
         """
+        return _Enforced(self)
+
+
+class _Enforced:
+    """The context manager of :meth:`Deadline.enforced` (a class, not a generator: the alarm
+    handler recognises its ``__enter__``/``__exit__`` frames and does not raise inside them)."""
+
+    __slots__ = ("deadline", "armed")
+
+    def __init__(self, deadline: Deadline):
+        self.deadline = deadline
+        self.armed = False
+
+    def __enter__(self):
         if threading.current_thread() is not threading.main_thread():
-            self.check()
-            yield
-            return
-        for d in (*_active, self):
+            self.deadline.check()
+            return self
+        for d in (*_active, self.deadline):
             d.check()
         _block()
         try:
@@ -201,27 +226,33 @@ class Deadline:
                 _saved_handler[0] = signal.signal(signal.SIGALRM, _on_alarm)
                 _saved_hook[0] = sys.unraisablehook
                 sys.unraisablehook = _quiet_unraisable
-            _active.append(self)
+            _active.append(self.deadline)
+            self.armed = True
             _arm()
         finally:
             _unblock()
+        return self
+
+    def __exit__(self, *exc):
+        if not self.armed:
+            return False
+        _block()
         try:
-            yield
+            self.armed = False
+            if self.deadline in _active:
+                _active.remove(self.deadline)
+            if _active:
+                _arm()
+            else:
+                signal.setitimer(signal.ITIMER_REAL, 0)
+                _drain_pending_alarm()  # else it reaches the restored handler (SIG_DFL: the process ends)
+                signal.signal(signal.SIGALRM, _saved_handler[0] or signal.SIG_DFL)
+                _saved_handler[0] = None
+                sys.unraisablehook = _saved_hook[0] or sys.__unraisablehook__
+                _saved_hook[0] = None
         finally:
-            _block()
-            try:
-                if self in _active:
-                    _active.remove(self)
-                if _active:
-                    _arm()
-                else:
-                    signal.setitimer(signal.ITIMER_REAL, 0)
-                    signal.signal(signal.SIGALRM, _saved_handler[0] or signal.SIG_DFL)
-                    _saved_handler[0] = None
-                    sys.unraisablehook = _saved_hook[0] or sys.__unraisablehook__
-                    _saved_hook[0] = None
-            finally:
-                _unblock()
+            _unblock()
+        return False
 
 
 _saved_hook: list = [None]
@@ -246,6 +277,12 @@ def _unblock():
         signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGALRM})
 
 
+def _drain_pending_alarm() -> None:
+    """Consume a SIGALRM that arrived while blocked (our own timer's), before the handler is restored."""
+    if hasattr(signal, "sigpending") and signal.SIGALRM in signal.sigpending():
+        signal.sigtimedwait({signal.SIGALRM}, 0)
+
+
 def _arm() -> None:
     """Arm the interval timer for the earliest active deadline (capped; at least a short retry)."""
     left = [d.remaining for d in _active if d.seconds is not None]
@@ -258,9 +295,28 @@ def _arm() -> None:
 
 def _on_alarm(signum, frame):
     expired = [d for d in _active if d.expired]
+    if expired and _in_bookkeeping(frame):
+        # inside the bookkeeping of entering or leaving an enforced block: raising here would leave
+        # the handler installed after the block (an alarm in whatever runs next); retry shortly
+        signal.setitimer(signal.ITIMER_REAL, RETRY_SECONDS)
+        return
     _arm()  # re-arm: early wake-up of a capped timer, or the retry while an expired block is unwinding
     if expired:
         raise BudgetExceeded(expired[0].message())
+
+
+def _in_bookkeeping(frame) -> bool:
+    """Whether ``frame`` runs inside the entry or exit of an enforced block (its callees included:
+    a signal caught by C before the mask was set is handled at the next bytecode, in any callee)."""
+    while frame is not None:
+        if frame.f_code in _UNINTERRUPTIBLE:
+            return True
+        frame = frame.f_back
+    return False
+
+
+#: code objects the alarm never interrupts (the entry and exit of an enforced block)
+_UNINTERRUPTIBLE = frozenset(f.__code__ for f in (_Enforced.__enter__, _Enforced.__exit__, _block, _unblock, _arm))
 
 
 # ---------------------------------------------------------------------------------------------

@@ -1,7 +1,6 @@
 """Decay models and the constants job: input checks, the search's deadline, the job's tuning."""
 
 import dataclasses
-import time
 
 import pytest
 import sympy
@@ -9,7 +8,7 @@ import sympy
 from lkverify.certify.constants import ConstantsJob, ConstantsTuning
 from lkverify.certify.decay import DecayModel, certify_decay, estimate_decay, search_parameters
 from lkverify.errors import InputError, UnsupportedInput
-from lkverify.options import Budget, Deadline
+from lkverify.options import Budget
 from lkverify.status import Status
 
 w, e = sympy.symbols("w e", nonnegative=True)
@@ -51,12 +50,30 @@ def test_certificate_budget_is_a_budget_object():
     assert cert.constants["c_tilde"] == pytest.approx(0.7)
 
 
+class _ExpiresAfter:
+    """A deadline that runs out at its ``after``-th look (a stub clock: no wall-clock assertion)."""
+
+    def __init__(self, after):
+        self.after, self.reads = after, 0
+
+    @property
+    def expired(self):
+        self.reads += 1
+        return self.reads > self.after
+
+
 def test_search_stops_cleanly_at_its_deadline_with_the_best_point():
-    deadline = Deadline(0.2)
-    t0 = time.monotonic()
-    params, est = search_parameters(family, {"a": (0.5, 2.0)}, objective=lambda r: -r["c_tilde"],
-                                    maxiter=10_000, deadline=deadline)
-    assert time.monotonic() - t0 < 5                  # stopped by the callback, not by maxiter
+    deadline, calls = _ExpiresAfter(3), [0]
+
+    def objective(r):
+        calls[0] += 1
+        return -r["c_tilde"]
+
+    params, est = search_parameters(family, {"a": (0.5, 2.0)}, objective=objective, maxiter=10_000,
+                                    popsize=5, deadline=deadline)
+    # stopped by the callback at its first look after the deadline, not by maxiter (10 000 generations
+    # of 5 would be 50 000 evaluations)
+    assert deadline.reads <= deadline.after + 2 and calls[0] <= 3 * 5
     assert 0.5 <= params["a"] <= 2.0 and est is not None
 
 

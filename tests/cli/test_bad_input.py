@@ -58,8 +58,8 @@ def test_deadline_with_a_huge_budget_arms_a_capped_timer():
         Deadline(float("nan"))
 
 
+@pytest.mark.timeout(60)  # a hang guard (the inner 100 s budget outliving the outer one), not a speed assertion
 def test_nested_deadlines_respect_the_outer_budget():
-    t0 = time.monotonic()
     with pytest.raises(BudgetExceeded):
         with Deadline(0.2).enforced():
             with Deadline(100).enforced():   # the inner budget must not outlive the outer one
@@ -70,7 +70,6 @@ def test_nested_deadlines_respect_the_outer_budget():
                     pass
                 while True:                  # caught and carried on: interrupted again
                     time.monotonic()
-    assert time.monotonic() - t0 < 5
 
 
 @pytest.mark.slow  # about 20 s on a loaded machine: a whole check
