@@ -77,14 +77,5 @@ __all__ = [
     "BoxPiece", "BoxReport", "BoxStatus", "FailingPoint", "ParameterBox", "run_over_box",
 ]
 
-def _package_version() -> str:
-    """The installed distribution's version (pyproject.toml is the one source)."""
-    from importlib.metadata import PackageNotFoundError, version
+from ._version import __version__  # noqa: E402
 
-    try:
-        return version("lkverify")
-    except PackageNotFoundError:  # pragma: no cover - running from a source tree that is not installed
-        return "0+unknown"
-
-
-__version__ = _package_version()

@@ -35,7 +35,7 @@ import sys
 import time
 from pathlib import Path
 
-from . import __version__
+from ._version import __version__
 from .options import MAX_BUDGET_SECONDS, BudgetExceeded
 from .catalogue.loader import LOAD_LIMIT_SECONDS, catalogue, find_items
 from .errors import InputError, UnsupportedInput
@@ -75,11 +75,6 @@ def _add_load_limit(p) -> None:
 
 
 def _build_parser() -> argparse.ArgumentParser:
-    from .simulate.figures import DISTANCES
-    from .simulate.rigidbody import CONVENTIONS, DEFAULT_CONVENTION
-    from .simulate.solver import FLOOR_WINDOW
-    from .catalogue.examples import DEFAULT_SIMULATE_BUDGET, MAX_STEPS
-
     p = _Parser(prog="lkverify", description="Check Lyapunov–Krasovskii stability proofs. "
                 "With no command: the report of every catalogued item at the papers' defaults.")
     sub = p.add_subparsers(dest="command", parser_class=_Parser)
@@ -97,6 +92,18 @@ def _build_parser() -> argparse.ArgumentParser:
                     help="items run in N worker processes at once (default: the number of CPUs, at most 4; "
                          "1: one after the other); the output order is the catalogue's")
     _add_quiet(rp)
+    _add_check(sub)
+    _add_simulate(sub)
+    _add_constants(sub)
+    _add_linear(sub)
+    from .sweep.cli import add_parser as _add_sweep
+
+    _add_sweep(sub, quiet=_add_quiet, seconds=_seconds, json_help=JSON_HELP)
+    return p
+
+
+def _add_check(sub) -> None:
+    """``lkverify check``: a theorem or check at given values, or over a box of them."""
     c = sub.add_parser("check", help="check an item's hypotheses and identities")
     c.add_argument("item", help="catalogue name (aleksandrov2023.theorem3), a paper, or path/to/proof.py[::item]")
     c.add_argument("--set", dest="sets", action="append", default=[], metavar="NAME=VALUE",
@@ -112,6 +119,15 @@ def _build_parser() -> argparse.ArgumentParser:
                    help="your own time cap of the whole check; what it cuts is undecided (default: none -- the check "
                         "stops at its deterministic work limits, so its verdict is the same on any machine; at most 1e6)")
     _add_load_limit(c)
+
+
+def _add_simulate(sub) -> None:
+    """``lkverify simulate``: a numerical example."""
+    from .catalogue.examples import DEFAULT_SIMULATE_BUDGET, MAX_STEPS
+    from .simulate.figures import DISTANCES
+    from .simulate.rigidbody import CONVENTIONS, DEFAULT_CONVENTION
+    from .simulate.solver import FLOOR_WINDOW
+
     s = sub.add_parser("simulate", help="integrate a numerical example and check the paper's claims about it")
     s.add_argument("item", help="an example (aleksandrov2023.fig6), or path/to/file.py[::item]")
     s.add_argument("--set", dest="sets", action="append", default=[], metavar="NAME=VALUE",
@@ -130,9 +146,9 @@ def _build_parser() -> argparse.ArgumentParser:
                    help="aircraft-angle convention of the examples' initial data (given as angles), one of: "
                         + "; ".join(f"{k}: {v}" for k, v in CONVENTIONS.items())
                         + f" (aliases gost, krylov = yzx; aerospace, nasa = zyx; default {DEFAULT_CONVENTION})")
-    s.add_argument("--distance", choices=sorted(DISTANCES), default="combined",
+    s.add_argument("--distance", choices=sorted(DISTANCES), default=None,
                    help="distance of the convergence claims and of the times to 1e-2 and 1e-3: "
-                        + "; ".join(f"{k} = {v}" for k, v in DISTANCES.items()) + " (default combined)")
+                        + "; ".join(f"{k} = {v}" for k, v in DISTANCES.items()) + " (default combined; for the examples that name their distances)")
     _add_quiet(s)
     s.add_argument("--budget", type=_seconds, default=DEFAULT_SIMULATE_BUDGET, metavar="SECONDS",
                    help=f"time budget for all runs together; a run cut short is undecided (default "
@@ -141,6 +157,10 @@ def _build_parser() -> argparse.ArgumentParser:
                         f"huge --t-end), and a run whose last {FLOOR_WINDOW} steps average less than the step floor "
                         f"(t_end - t0)/{MAX_STEPS:.0e} is stopped: diverged (a blow-up) or step_collapse (stiff)")
     _add_load_limit(s)
+
+
+def _add_constants(sub) -> None:
+    """``lkverify constants``: the certified constants, region and envelope of a proof."""
     k = sub.add_parser("constants", help="compute and certify the constants, region and envelope of a proof")
     k.add_argument("item", help="e.g. aleksandrov2023.theorem3, aleksandrov2017.lemma1")
     k.add_argument("--set", dest="sets", action="append", default=[], metavar="NAME=VALUE",
@@ -156,11 +176,6 @@ def _build_parser() -> argparse.ArgumentParser:
     _add_load_limit(k)
     k.add_argument("--goal", default=None, help="which trade-off to optimise, for items that offer several "
                    "(aleksandrov2023.theorem3: paper = match d1, d2, d3 and maximise δ̃; region = maximise δ̃)")
-    _add_linear(sub)
-    from .sweep.cli import add_parser as _add_sweep
-
-    _add_sweep(sub, quiet=_add_quiet, seconds=_seconds, json_help=JSON_HELP)
-    return p
 
 
 def _add_linear(sub) -> None:
@@ -418,7 +433,7 @@ def _simulate(args) -> int:
     from .catalogue.examples import Example
     from .declare.parse import parse_value
     from .declare.symbols import t as t_sym
-    from .simulate.figures import FigureExample, convention_name
+    from .simulate.figures import convention_name
 
     if args.t_end is not None and not (args.t_end > 0 and args.t_end < float("inf")):
         raise InputError(f"--t-end: expected a positive finite time, got {args.t_end}")
@@ -437,7 +452,7 @@ def _simulate(args) -> int:
         raise InputError(f"{args.item}: not a numerical example; `lkverify list` marks examples "
                          f"(e.g. aleksandrov2023.fig6); use `lkverify check` for theorems")
     examples = [ex.with_options(values, histories=histories, convention=args.convention, distance=args.distance)
-                if isinstance(ex, FigureExample) else ex for ex in examples]
+                for ex in examples]
     paths = {}
     if args.plot:
         for ex in examples:
@@ -445,7 +460,7 @@ def _simulate(args) -> int:
             check_output_path(paths[ex.name])
     for ex in examples:  # refuse bad values, histories and step counts before integrating anything
         ex.prepare(values, t_end=args.t_end, histories=histories)
-        if isinstance(ex, FigureExample) and ex.envelope is not None:
+        if ex.envelope is not None:
             _constant_histories(ex, histories)
             ex.chi_used()  # ‖χ‖_τ of the history used: a history it cannot take is refused now
     tty = not args.json and not args.quiet and sys.stderr.isatty()
@@ -519,36 +534,36 @@ def _history_json(history) -> dict:
 
 
 def _run_setup(ex, values, histories) -> list:
-    from .simulate.figures import FigureExample, plain, resolved_values, show_value
+    from .simulate.figures import plain, resolved_values, show_value
 
     runs = []
     for run in ex.runs:
-        history = dict(run.history)
-        if not isinstance(ex, FigureExample):
-            history.update(histories)
+        history = dict(run.history)  # with_options put the --history values there
         entry = {"label": run.label,
                  "parameters": {k: show_value(v) for k, v in resolved_values(run, values).items()},
                  "history": _history_json(history),
                  "history_overridden": sorted(histories),
                  "history_override": {k: _history_json({k: v})[k] for k, v in histories.items()}}
-        if isinstance(ex, FigureExample):
+        if ex.caption is not None:
             entry["title"] = plain(ex.label_for(run.label) if len(ex.runs) > 1 else ex.title_for())
         runs.append(entry)
     return runs
 
 
 def _simulation_json(ex, report, written, args, histories) -> dict:
-    from .simulate.figures import DISTANCES, FigureExample, plain
+    from .simulate.figures import DISTANCES, plain
 
     out = report.to_json()
     out["runs"] = _run_setup(ex, _set_values(args.sets), histories)
     out["history_overridden"] = bool(histories)
-    if isinstance(ex, FigureExample):
+    if ex.caption is not None:
         out["title"] = plain(ex.title_for())
+    if ex.convention is not None or ex.caption is not None:
         out["convention"] = ex.convention
+    if ex.distance_name is not None:
         out["distance"] = {"name": ex.distance_name, "definition": DISTANCES.get(ex.distance_name)}
-        if ex.envelope is not None:
-            out["chi_tau"] = ex.chi_used()
+    if ex.envelope is not None:
+        out["chi_tau"] = ex.chi_used()
     out["t_end"] = args.t_end if args.t_end is not None else ex.t_end
     out["figures"] = list(written)
     out["versions"] = _versions()
@@ -557,7 +572,7 @@ def _simulation_json(ex, report, written, args, histories) -> dict:
 
 def _setup_lines(ex, args, histories) -> list:
     """The text report's lines about the run setup: history (and its override), convention, distance."""
-    from .simulate.figures import DISTANCES, FigureExample, show_vector
+    from .simulate.figures import DISTANCES, show_vector
 
     lines = []
     if histories:
@@ -566,13 +581,13 @@ def _setup_lines(ex, args, histories) -> list:
                      + "; the other states from the catalogue")
     else:
         lines.append("history: the catalogue's (no --history)")
-    if isinstance(ex, FigureExample):
-        if ex.convention is not None:
-            lines.append(f"angle convention of the initial data: {ex.convention}"
-                         + (" (default)" if args.convention is None else ""))
+    if ex.convention is not None:
+        lines.append(f"angle convention of the initial data: {ex.convention}"
+                     + (" (default)" if args.convention is None else ""))
+    if ex.distance_name is not None:
         lines.append(f"distance: {ex.distance_name} = {DISTANCES.get(ex.distance_name, '')}")
-        if ex.envelope is not None:
-            lines.append(f"‖χ‖_τ of the history used: {ex.chi_used():.4g}")
+    if ex.envelope is not None:
+        lines.append(f"‖χ‖_τ of the history used: {ex.chi_used():.4g}")
     return lines
 
 

@@ -54,6 +54,7 @@ from ..errors import InputError, UnsupportedInput
 from ..report.results import Report, Result
 from ..status import Label, Status
 from .links import Link, theorem_verdict
+from .statements import _capped, _cut_text, _not_exact_if_floats, _symbols_of
 
 __all__ = ["BoxPiece", "BoxReport", "BoxStatus", "DEFAULT_MAX_BOXES", "FailingPoint", "run_over_box"]
 
@@ -469,7 +470,6 @@ class _State:
         """The chain on one piece: hypotheses over it, the identities, then the steps and the decay at the
         documented choices, the choices that closed the parent piece (``hint``), and the choices the
         constants job finds at the piece's tightest corner, in that order, until one closes."""
-        from .items import _not_exact_if_floats, _symbols_of
 
         th, P = self.theorem, self.theorem.parameters
         documented = self.choices_at(box)
@@ -609,7 +609,6 @@ class _State:
 
     def _chain_at(self, box, sym_values, intervals, fixed, cap, say):
         """(rows, checked, cut, failing, decay link) of the steps and the decay at these values."""
-        from .items import _capped, _cut_text, _not_exact_if_floats, _symbols_of
 
         th, P = self.theorem, self.theorem.parameters
         floated = P.float_symbols(sym_values)
@@ -648,7 +647,6 @@ class _State:
         Kept for the run, keyed by the step, the boxed symbols with their intervals and the values; the
         region's parameters (``delta_e`` …) are left out of the key of a step not written in them (V ≥ L
         and V ≤ U do not change when the region is shrunk)."""
-        from .items import _symbols_of
 
         names = set(self.region_names() or ())
         P = self.theorem.parameters
@@ -670,7 +668,6 @@ class _State:
 
     def _decay(self, checked, sym_values, intervals, cap, say):
         """(rows, status, detail) of the decay certified with the steps made uniform over the box."""
-        from .items import _capped, _cut_text
 
         uniform = {}
         try:
@@ -725,7 +722,7 @@ def _tightest_corner(box: ParameterBox, margins, intervals: Mapping, fixed: Mapp
 def _worst_corner(box: ParameterBox, checked: Mapping, intervals: Mapping, fixed: Mapping) -> dict | None:
     """The corner where the steps' right-hand sides are nearest their uniform bounds over the piece
     (the sum over monomials of the relative gaps), or None when they cannot be compared."""
-    from ..certify.steps.conclusions import collect_monomials
+    from ..certify.monomials import collect_monomials
 
     by_name = {str(s_): s_ for s_ in intervals}
     parts = []

@@ -9,6 +9,8 @@ vocabulary of runs and claims lives in :mod:`lkverify.simulate.experiments`.
 
 from __future__ import annotations
 
+import copy
+import dataclasses
 from collections.abc import Callable, Mapping, Sequence
 
 import numpy as np
@@ -18,12 +20,14 @@ from ..options import Budget, Deadline
 from ..report.results import Report, Result
 from ..simulate.control import StepControl
 from ..simulate.envelope import EnvelopeCheck, cross_check
+from ..simulate.figures import AngleHistory, convention_name, plain, plot_runs, resolved_values, show_value
 from ..simulate.experiments import EnvelopeSpec, Run, RunSummary, Series, _time_to, along, reach_text
 # transitional: proof modules written before the move import the run claims from here; new code
 # imports them from lkverify.simulate (lkverify.simulate.experiments)
 from ..simulate.experiments import (BoundedNotAttractive, Converges, DoesNotConverge, FasterThan,  # noqa: F401
                                     Sensitive, SmootherThan)
 from ..simulate.runs import MAX_STEPS, Trajectory, prepare_run, simulate
+from ..simulate.rigidbody import DEFAULT_CONVENTION
 from ..simulate.solver import Outcome
 from ..status import Status
 from .items import Item
@@ -59,6 +63,28 @@ class Example(Item):
     equilibrium : mapping, optional
         State name → value of the equilibrium the distance measures convergence to (as
         :func:`lkverify.linear.linearise` takes it); ``lkverify sweep`` linearises there.
+    caption : callable, optional
+        ``caption(values, history, convention, overridden)`` → the figure title (mathtext),
+        computed from the resolved values and the history of the first run (``overridden``: the
+        states ``--history`` replaced).  An example with a caption reports its resolved values
+        and names its runs after the values and histories used (:meth:`with_options`).
+    run_caption : callable, optional
+        ``run_caption(label, values, history, convention, overridden)`` → the label of one run
+        (examples with several runs).
+    initial : AngleHistory, optional
+        The initial data as aircraft angles (rebuilt for ``--convention``).
+    distances : mapping, optional
+        Named distances for the convergence claims, ``{"combined": f, "per-vector": g}``
+        (``--distance``); ``distance`` defaults to the combined one.
+    vectors : sequence of (label, callable), optional
+        The per-vector distances ‖s_i − r_i‖ drawn on the distance panel.
+    targets : sequence of float, optional
+        Target values of the plotted series (drawn as dashed lines).
+    envelope_caption, ylabel_tex : str, optional
+        Mathtext forms of the envelope (its panel's title) and of the y label.
+    distance_panel : bool, optional
+        Draw the log distance over the whole run below each run's series (default: when
+        ``distances`` are named); see :func:`lkverify.simulate.figures.plot_runs`.
 
     Examples
     --------
@@ -79,10 +105,19 @@ class Example(Item):
     """
 
     def __init__(self, name: str, *, runs: Sequence[Run], t_end: float, series: Sequence[Series],
-                 distance: Callable, claims: Sequence = (), title: str = "", ylabel: str = "",
+                 distance: Callable | None = None, claims: Sequence = (), title: str = "", ylabel: str = "",
                  envelope: EnvelopeSpec | None = None, samples: int = 4001, logy: bool = False,
                  step: StepControl = StepControl(), paper: str = "", plot_until: float | None = None,
-                 equilibrium: Mapping | None = None):
+                 equilibrium: Mapping | None = None, caption: Callable | None = None,
+                 run_caption: Callable | None = None, initial: AngleHistory | None = None,
+                 distances: Mapping | None = None, vectors: Sequence = (), targets: Sequence | None = None,
+                 envelope_caption: str = "", ylabel_tex: str = "", distance_panel: bool | None = None):
+        distances = dict(distances or {})
+        if distance is None:
+            distance = distances.get("combined")
+        if distance is None:
+            raise InputError(f"example {name}: expected a distance (distance=callable, or distances with a "
+                             f"'combined' entry), got none")
         if not runs:
             raise InputError(f"example {name}: expected at least one run; pass runs=[Run(label, system, values, "
                              f"history)]")
@@ -103,6 +138,110 @@ class Example(Item):
         self.paper = paper
         self.plot_until = plot_until
         self.equilibrium = None if equilibrium is None else dict(equilibrium)
+        self.caption = caption
+        self.run_caption = run_caption
+        self.initial = initial
+        self.distances = distances
+        self.distance_name = "combined" if distances else None
+        self.vectors = tuple(vectors)
+        self.targets = None if targets is None else tuple(targets)
+        self.envelope_caption = envelope_caption
+        self.ylabel_tex = ylabel_tex
+        self.distance_panel = bool(distances) if distance_panel is None else bool(distance_panel)
+        self.convention = DEFAULT_CONVENTION if initial is not None else None
+        self.overridden: dict = {}     # state name → the --history value that replaced the catalogue's
+        self.user_values: dict = {}
+
+    # -- options ---------------------------------------------------------------------------
+    def with_options(self, values: Mapping | None = None, *, histories: Mapping | None = None,
+                     convention: str | None = None, distance: str | None = None) -> "Example":
+        """A copy whose runs carry the values and histories used (so claims and envelope see them).
+
+        ``convention`` rebuilds the angle-given initial data (:class:`AngleHistory`) in that
+        convention; ``histories`` then replace states of it; ``distance`` picks one of the named
+        ``distances`` for the convergence claims.  An example with a caption names its runs after
+        the values and data used.
+
+        Raises
+        ------
+        InputError
+            An unknown convention or distance.
+        """
+        ex = copy.copy(self)
+        conv = convention_name(convention) if convention is not None else self.convention
+        if distance is not None:
+            if distance not in self.distances:
+                raise InputError(f"--distance: expected one of {', '.join(self.distances)}, got {distance!r}"
+                                 if self.distances else
+                                 f"--distance: {self.qualified_name} has a single distance (no named ones); "
+                                 f"got {distance!r}; omit --distance")
+            ex.distance = self.distances[distance]
+            ex.distance_name = distance
+        runs = []
+        for run in self.runs:
+            hist = dict(run.history)
+            if self.initial is not None and convention is not None:
+                hist.update(self.initial.history(conv))
+            hist.update(dict(histories or {}))
+            runs.append(dataclasses.replace(run, history=hist))
+        ex.runs = tuple(runs)
+        ex.convention = conv if self.initial is not None else None
+        ex.overridden = {k: v for k, v in dict(histories or {}).items()}
+        ex.user_values = dict(values or {})
+        if (values or histories or convention is not None) and (self.caption or self.run_caption):
+            ex._relabel()
+        return ex
+
+    def _relabel(self) -> None:
+        """Name the runs (and the claims and envelope that refer to them) after the values and data used."""
+        new = {}
+        for run in self.runs:
+            if len(self.runs) == 1:
+                new[run.label] = plain(self.title_for())
+            elif self.run_caption is not None:
+                new[run.label] = plain(self.label_for(run.label))
+        if len(set(new.values())) != len(new):  # two runs would get one name: keep the catalogue's
+            return
+        self.runs = tuple(dataclasses.replace(r, label=new.get(r.label, r.label)) for r in self.runs)
+
+        def moved(obj):
+            if not dataclasses.is_dataclass(obj):
+                return obj
+            changes = {f.name: new[getattr(obj, f.name)] for f in dataclasses.fields(obj)
+                       if f.name in ("run", "a", "b") and isinstance(getattr(obj, f.name), str)
+                       and getattr(obj, f.name) in new}
+            return dataclasses.replace(obj, **changes) if changes else obj
+
+        self.claims = tuple(moved(c) for c in self.claims)
+        if self.envelope is not None:
+            self.envelope = moved(self.envelope)
+
+    # -- captions --------------------------------------------------------------------------
+    def title_for(self, values: Mapping | None = None) -> str:
+        """The figure title computed from the values and history of the first run."""
+        run = self.runs[0]
+        vals = resolved_values(run, values if values is not None else self.user_values)
+        if self.caption is not None:
+            return self.caption(vals, dict(run.history), self.convention, set(self.overridden))
+        title = self.title or self.qualified_name
+        changed = values if values is not None else self.user_values
+        if changed:
+            title += " with " + ", ".join(f"{k} = {show_value(vals[k])}" for k in changed if k in vals)
+        return title
+
+    def label_for(self, label: str, values: Mapping | None = None) -> str:
+        """The label of a run computed from its values and history."""
+        run = next(r for r in self.runs if r.label == label)
+        if self.run_caption is None:
+            return label
+        vals = resolved_values(run, values if values is not None else self.user_values)
+        return self.run_caption(label, vals, dict(run.history), self.convention, set(self.overridden))
+
+    def chi_used(self) -> float:
+        """‖χ‖_τ of the envelope's run, from the history used (after --history and --convention)."""
+        e = self.envelope
+        run = next(r for r in self.runs if r.label == e.run)
+        return float(e.chi(run))
 
     # -- simulation ------------------------------------------------------------------------
     def prepare(self, values: Mapping | None = None, *, t_end: float | None = None,
@@ -181,7 +320,11 @@ class Example(Item):
                    f"undecided: a run stopped before t_end (time budget or step floor): {', '.join(undecided)}"
                    if undecided else
                    f"every claim observed along the simulated trajectories (status simulated: observed, not proved)")
-        params = {k: str(v) for k, v in (values or {}).items()}
+        if self.caption is not None:  # its captions show the resolved values: so does its report (common to every run)
+            per_run = [{k: show_value(v) for k, v in resolved_values(r, values).items()} for r in self.runs]
+            params = {k: v for k, v in per_run[0].items() if all(p.get(k) == v for p in per_run[1:])}
+        else:
+            params = {k: str(v) for k, v in (values or {}).items()}
         return Report(self.qualified_name, params, tuple(results), verdict)
 
     def _run_results(self, trajectories):
@@ -233,49 +376,18 @@ class Example(Item):
 
     # -- figures ---------------------------------------------------------------------------
     def plot(self, trajectories: Mapping[str, Trajectory], path, *, envelope: bool = False) -> None:
-        """Write the figure (PNG, or PDF/SVG by the suffix of ``path``): each series against t, a panel per run.
+        """Write the figure (PNG, or PDF/SVG by the suffix of ``path``), drawn by :func:`~lkverify.simulate.figures.plot_runs`.
 
-        The shared style of the catalogue's figures: the whole simulated interval (the paper's
-        window, ``plot_until``, shaded), mathtext labels, legends outside the axes, and with
-        ``envelope=True`` a log-scale panel of the envelope against the trajectory.
+        Per run the plotted series (and, with ``distance_panel``, the log distance over the whole
+        run); with ``envelope=True`` a log-scale panel of the envelope against the trajectory.
         """
-        from matplotlib.figure import Figure  # no pyplot: the backend (and a notebook's inline one) is left alone
-
         from ..simulate.figures import _tex
 
         show_env = envelope and self.envelope is not None
-        n = len(trajectories) + (1 if show_env else 0)
-        fig = Figure(figsize=(9.0, 3.0 * n), layout="constrained")
-        axes = fig.subplots(n, 1, squeeze=False)[:, 0]
-        title = self.title or self.qualified_name
-        fig.suptitle(_tex(title), fontsize=10)
-        for ax, (label, tr) in zip(axes, trajectories.items()):
-            for s in self.series:
-                ax.plot(tr.t, np.asarray(along(s.fn, tr.states, tr.values), dtype=float), lw=1.2, label=_tex(s.label))
-            T = float(tr.t[-1])
-            if self.plot_until is not None and float(self.plot_until) < T:
-                ax.axvspan(float(tr.t[0]), float(self.plot_until), color="0.85", alpha=0.5, lw=0,
-                           label=f"the paper's window t ≤ {float(self.plot_until):g}")
-            ax.set_title(("" if label == title else _tex(label) + ": ") + f"t ∈ [{float(tr.t[0]):g}, {T:g}]",
-                         fontsize=9)
-            ax.set_xlabel("$t$")
-            ax.set_ylabel(_tex(self.ylabel))
-            if self.logy:
-                ax.set_yscale("log")
-            ax.grid(alpha=0.3, which="both")
-            ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
-        if show_env:
-            e = self.envelope
-            tr = trajectories[e.run]
-            run = next(r for r in self.runs if r.label == e.run)
-            chi = float(e.chi(run))
-            ax = axes[-1]
-            q = np.asarray(along(e.quantity.fn, tr.states, tr.values), dtype=float)
-            ax.semilogy(tr.t, np.maximum(q, 1e-300), lw=1.2, label=_tex(e.quantity.label) + " (trajectory)")
-            ax.semilogy(tr.t, np.asarray(e.bound(tr.t, chi), dtype=float), "--", lw=1.2, label="envelope")
-            ax.set_title(_tex(e.label) + rf",  $\|\chi\|_\tau = {chi:.4g}$", fontsize=9)
-            ax.set_xlabel("$t$")
-            ax.set_ylabel(_tex(e.quantity.label))
-            ax.grid(alpha=0.3, which="both")
-            ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
-        fig.savefig(path, dpi=110)
+        title = self.title_for() if self.caption is not None else _tex(self.title_for())
+        labels = {k: self.label_for(k) for k in trajectories} if len(trajectories) > 1 else None
+        plot_runs(trajectories, path, title=title, series=self.series, distance=self.distance, run_labels=labels,
+                  plot_until=self.plot_until, ylabel=self.ylabel_tex or _tex(self.ylabel), logy=self.logy,
+                  targets=self.targets, distance_panel=self.distance_panel, distance_name=self.distance_name,
+                  vectors=self.vectors, envelope=self.envelope if show_env else None,
+                  chi=self.chi_used() if show_env else None, envelope_caption=self.envelope_caption)

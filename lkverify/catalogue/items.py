@@ -21,13 +21,11 @@ A proof module declares items; ``lkverify check`` runs them.
 from __future__ import annotations
 
 import dataclasses
-import sys as _sys
 from collections.abc import Callable, Mapping, Sequence
 
 from ..errors import InputError
-from ..certify.hypotheses import Hypothesis, MatrixHypothesis
+from ..certify.hypotheses import Hypothesis
 from ..certify.steps import BoundClaim, quadratic_upper_bound
-from ..certify.steps.chain import TermwiseBound
 from ..symbolic.claims import DerivativeClaim, IdentityClaim
 from ..declare.functional import Functional
 from ..declare.parameters import Parameters
@@ -35,6 +33,7 @@ from ..report.results import Report, Result
 from ..status import Status
 from ..declare.system import System
 from .links import Link, _best_step, _combined, _concluded, theorem_verdict
+from .statements import _capped, _cut_text, _not_exact_if_floats, _symbols_of
 
 __all__ = ["Check", "Item", "Link", "Theorem", "theorem_verdict"]
 
@@ -559,35 +558,6 @@ class _StepsRun:
     at: str | None = None  # "the searched choices" after a search of the proof's choices
 
 
-def _capped(cap, fn):
-    """``(fn(), None)`` under the caller's cap; ``(None, "before" | "during")`` when the cap cut it.
-
-    The cap is checked before ``fn`` and enforced inside it (``SIGALRM`` in the main thread).
-
-    >>> from lkverify.options import Deadline
-    >>> _capped(Deadline(None, cap=True), lambda: 1)
-    (1, None)
-    """
-    from ..options import BudgetExceeded
-
-    if cap.seconds is None:
-        return fn(), None
-    if cap.expired:
-        return None, "before"
-    try:
-        with cap.enforced():
-            return fn(), None
-    except BudgetExceeded:
-        return None, "during"
-
-
-def _cut_text(cap, how: str, what: str = "step") -> str:
-    """Why a statement is undecided: the caller's budget was spent before or during it."""
-    if how == "before":
-        return f"the budget was spent before this {what} (time budget of {cap.seconds:g} s)"
-    return f"the budget was spent during this {what} (time budget of {cap.seconds:g} s); raise --budget to finish"
-
-
 def _check_claim(claim, P, given, sub_given, deadline):
     """A claim at the given values; a user's function of t (or of ζ) is first kept as a symbol.
 
@@ -636,57 +606,6 @@ def _cached_check(claim, values: Mapping, check):
     if res.status in (Status.EXACT, Status.FAILED):
         _CLAIM_CACHE[key] = (claim, res)
     return res
-
-
-def _symbols_of(statement) -> set:
-    """The symbols and applied functions a hypothesis or claim is written in."""
-    import sympy
-    from sympy.core.function import AppliedUndef
-
-    exprs = []
-    if callable(getattr(statement, "symbols", None)):  # a statement that names its own symbols
-        return set(statement.symbols())
-    if isinstance(statement, Hypothesis):
-        exprs.append(sympy.sympify(statement.margin))
-    elif isinstance(statement, MatrixHypothesis):
-        exprs += list(sympy.Matrix(statement.matrix))
-    elif isinstance(statement, TermwiseBound):
-        exprs += [statement.rhs, statement.functional.expr] + [tb.bound for tb in statement.bounds]
-        exprs += [e for eq in statement.system.equations for term in eq.terms for e in [term.expr]]
-        if statement.region is not None:
-            exprs += list(statement.region.bounds.values())
-    elif isinstance(statement, BoundClaim):
-        exprs += [statement.rhs, statement.functional.expr]
-        exprs += [e for eq in statement.system.equations for term in eq.terms for e in [term.expr]]
-        if not isinstance(statement.lhs, str):
-            exprs.append(statement.lhs)
-    else:
-        terms = list(getattr(statement, "terms", ())) + list(getattr(statement, "lhs", ())) \
-            + list(getattr(statement, "rhs", ()))
-        functional = getattr(statement, "functional", None)
-        if functional is not None:
-            terms += list(functional.terms)
-        for eq in statement.system.equations:
-            terms += list(eq.terms)
-            if eq.mass is not None:
-                exprs += list(eq.mass)
-        exprs += [term.expr for term in terms]
-    out: set = set()
-    for e in exprs:
-        e = sympy.sympify(e)
-        out |= e.free_symbols
-        out |= {a.func for a in e.atoms(AppliedUndef)}
-    return out
-
-
-def _not_exact_if_floats(result: Result, symbols: set, floated: frozenset) -> Result:
-    """An ``exact`` result that rests on a parameter given as a float is only ``certified``."""
-    if result.status is not Status.EXACT or not (symbols & floated):
-        return result
-    names = ", ".join(sorted(str(s) for s in symbols & floated))
-    return dataclasses.replace(result, status=Status.CERTIFIED,
-                               detail=f"{result.detail}; {names} came from floating-point input (taken at the "
-                                      f"exact binary value), so the result is certified, never exact")
 
 
 def _show(value) -> str:

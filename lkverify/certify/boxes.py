@@ -188,7 +188,7 @@ def uniform_bound(expr, intervals: Mapping, variables, direction: str):
     ...
     lkverify.errors.UnsupportedInput: a uniform bound over the box needs nonnegative variables (every monomial ≥ 0); y is not known to be ≥ 0
     """
-    from .steps.conclusions import collect_monomials
+    from .monomials import collect_monomials
 
     if direction not in ("upper", "lower"):
         raise ValueError(f"direction: expected 'upper' or 'lower', got {direction!r}")

@@ -36,6 +36,7 @@ import sympy
 
 from ..errors import InputError, UnsupportedInput
 from ..status import Status
+from .frequency import frequency_polynomial
 from .model import LinearDelaySystem
 from .spectrum import rightmost_roots, spectral_abscissa
 
@@ -118,41 +119,6 @@ def crossing_frequencies(system: LinearDelaySystem):
     P, q, (z, w) = found
     roots = [float(r.evalf(30)) for r in sympy.real_roots(P) if r > 0]
     return sorted(set(roots)), q, (z, w)
-
-
-def frequency_polynomial(system: LinearDelaySystem):
-    """``(P, q, (z, ω))``: P ∈ ℚ[ω] whose real roots contain every crossing frequency, and q(ω, z); or None.
-
-    None when unsupported (irrational matrices, a polynomial kernel, no delayed term, a resultant ≡ 0).
-
-    >>> from lkverify.linear.model import LinearDelaySystem
-    >>> P, q, (z, w) = frequency_polynomial(LinearDelaySystem([[-2, 0], [0, "-0.9"]], Ad=[[-1, 0], [-1, -1]]))
-    >>> [round(float(r), 12) for r in sympy.real_roots(P) if r > 0]     # √0.19
-    [0.435889894354]
-    """
-    if not (system.is_rational and system.constant_kernel):
-        return None
-    w, z = sympy.symbols("omega z", real=True)  # real symbols: conjugation acts on the coefficients only
-    n = system.n
-    D = system.kernel[0] if system.has_distributed else sympy.zeros(n, n)
-    M = sympy.I * w * (sympy.I * w * sympy.eye(n) - system.A - system.Ad * z) - D * (1 - z)
-    q_expr = sympy.expand(M.det(method="berkowitz"))
-    q = sympy.Poly(q_expr, z, w, domain="QQ_I")
-    if q.is_zero or q.degree(z) <= 0:
-        return None
-    dz = q.degree(z)
-    qbar = sympy.Poly(sympy.expand(z ** dz * sympy.conjugate(q_expr).subs(z, 1 / z)), z, w, domain="QQ_I")
-    R = sympy.Poly(sympy.resultant(q, qbar).as_expr(), w)
-    if R.is_zero:
-        return None
-    coeffs = R.all_coeffs()
-    re = sympy.Poly([sympy.re(c) for c in coeffs], w)
-    im = sympy.Poly([sympy.im(c) for c in coeffs], w)
-    P = re if not re.is_zero else im
-    if not im.is_zero and not re.is_zero:
-        P = sympy.gcd(re, im)
-    P = sympy.Poly(P, w, domain="QQ")
-    return P, q, (z, w)
 
 
 def _crossings_from(system, found, h_max):

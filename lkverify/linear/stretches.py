@@ -12,7 +12,7 @@ delay h₀ of such an interval decides all of it:
 
 The delays with a root on the axis are enclosed rigorously (:func:`crossing_enclosures`): every
 crossing frequency ω > 0 is a real root of the exact polynomial P of
-:func:`~lkverify.linear.crossing.frequency_polynomial`, isolated by python-flint
+:func:`~lkverify.linear.frequency.frequency_polynomial`, isolated by python-flint
 (``fmpz_poly.complex_roots``: isolating balls, real roots with an exact zero imaginary part) at
 192 bits; at each, the roots z of q(ω, z) are enclosed by arb (``acb_poly.roots``: each
 ball holds exactly one root for every ω of the ball); those whose modulus may be 1 give the
@@ -46,7 +46,7 @@ from flint import acb, acb_poly, arb, ctx, fmpq, fmpz_poly
 from ..status import Status
 from .hierarchy import certify_delay
 from .instability import refute_stability
-from .crossing import frequency_polynomial
+from .frequency import frequency_polynomial
 from .model import LinearDelaySystem
 from .spectrum import DEFAULT_NODES, spectral_abscissa
 from ..certify.intervals import float_down, float_up, lower_fraction, upper_fraction

@@ -238,7 +238,7 @@ def prove_grid(plan, grid, checks: Mapping, options, deadline=None, progress=Non
                 hint = _last_choices(out, short, ks, k)
                 record(short, k, prove_cell(name, values, cell_box(grid, k), hint=hint, **kw))
         return out
-    from .engine import _client
+    from .cluster import _client
 
     with _client(options) as client:
         from distributed import as_completed

@@ -219,10 +219,8 @@ def _condition(nonempty):
     return nonempty
 
 
-def _nu_sets(h, mu):
-    """[Result (11) set, Result (10)/(15) set, Result admissible set]."""
-    a = sympy.limit(sympy.log(h) / sympy.log(_T), _T, sympy.oo)
-    # (11)
+def _set11(h, a):
+    """(S11, Result) of condition (11) ∫_0^∞ h^ν = ∞ over ν ≥ 1, given a = lim log h / log t."""
     n11 = "(11) ∫_0^∞ h^ν = ∞: set of ν ≥ 1"
     if a == 0:
         S11 = sympy.Interval(1, sympy.oo)
@@ -251,12 +249,15 @@ def _nu_sets(h, mu):
             r11 = Result("hypothesis", n11, Status.EXACT, S11, f"(11) holds exactly for ν in {S11}: {why}")
     else:
         raise _Undecided(f"SymPy could not decide the decay of h: lim log h / log t = {a}")
+    return S11, r11
 
-    # (10) / (15)
+
+def _set10(h, mu, a, S11):
+    """(S10, why, None) of condition (10) (or (15)) over ν ≥ 1; ``(None, None, why)`` when SymPy cannot decide it
+    for symbolic ν, ``S10 = None`` when it is not needed ((11) fails)."""
     lab = _label10(mu)
-    n10 = f"{lab} {_formula10(mu)}: set of ν ≥ 1"
     absdh = _abs_derivative(h)
-    S10 = None
+    S10, why10 = None, ""
     if absdh == 0:
         S10, why10 = sympy.Interval(1, sympy.oo), "ḣ ≡ 0"
     elif not _continuous_derivative(h):
@@ -295,10 +296,14 @@ def _nu_sets(h, mu):
             elif S11 is sympy.S.EmptySet:
                 S10 = None
             else:
-                return [Result("bound", n10, Status.UNDECIDED, None,
-                               f"SymPy could not decide {lab} for symbolic ν (limit {L})"), r11,
-                        Result("hypothesis", f"admissible ν ≥ 1 ((5), {lab}, (11))", Status.UNDECIDED, None,
-                               f"{lab} undecided; (11) holds for ν in {S11}")]
+                return None, None, f"SymPy could not decide {lab} for symbolic ν (limit {L})"
+    return S10, why10, None
+
+
+def _admissible(mu, S10, why10, r11, S11):
+    """[Result (10)/(15), Result (11), Result admissible set] from the two sets."""
+    lab = _label10(mu)
+    n10 = f"{lab} {_formula10(mu)}: set of ν ≥ 1"
     if S10 is None:
         r10 = Result("bound", n10, Status.UNDECIDED, None, f"SymPy could not decide {lab} (not needed: (11) fails)")
     elif S10 is sympy.S.EmptySet:
@@ -329,6 +334,19 @@ def _nu_sets(h, mu):
                                  f"do not meet")]
     return [r10, r11, Result("hypothesis", nA, Status.EXACT, {"nu": A, "condition": cond},
                              f"the conditions hold iff {cond}, then exactly for ν in {A}")]
+
+
+def _nu_sets(h, mu):
+    """[Result (11) set, Result (10)/(15) set, Result admissible set]."""
+    a = sympy.limit(sympy.log(h) / sympy.log(_T), _T, sympy.oo)
+    S11, r11 = _set11(h, a)
+    S10, why10, undecided = _set10(h, mu, a, S11)
+    if undecided is not None:
+        lab = _label10(mu)
+        return [Result("bound", f"{lab} {_formula10(mu)}: set of ν ≥ 1", Status.UNDECIDED, None, undecided), r11,
+                Result("hypothesis", f"admissible ν ≥ 1 ((5), {lab}, (11))", Status.UNDECIDED, None,
+                       f"{lab} undecided; (11) holds for ν in {S11}")]
+    return _admissible(mu, S10, why10, r11, S11)
 
 
 # ---------------------------------------------------------------- entry point

@@ -10,7 +10,8 @@ import sympy
 
 from lkverify import t
 from lkverify.simulate import BoundedNotAttractive, Converges, DoesNotConverge, FromValues, Run, Series
-from lkverify.simulate.figures import AngleHistory, FigureExample, show_value, show_vector
+from lkverify.catalogue.examples import Example
+from lkverify.simulate.figures import AngleHistory, show_value, show_vector
 from lkverify.simulate.rigidbody import DEFAULT_CONVENTION, inertial_vectors_from_angles
 
 from .equations import PAPER, P, gamma, system
@@ -96,7 +97,7 @@ def _run_caption(label, values, history, convention, overridden):
 
 
 CONVERGING, BOUNDED = "h = (1+t)^(−7/8)", "h = (1+t)^(−8/7)"
-example = FigureExample(
+example = Example(
     "example",
     caption=_caption, run_caption=_run_caption, initial=INITIAL,
     distances={"combined": distance, "per-vector": per_vector_distance},

@@ -450,10 +450,12 @@ class EnvelopeAgainstRun:
     def run(self, item_name, values, shown, *, budget=120.0, progress=None, goal=None):
         """(Report, data for :meth:`plot`)."""
         from lkverify import Report, Result
+        from lkverify.catalogue import find_items
         from lkverify.simulate import simulate
 
         from .example import INITIAL, initial_history
-        from .theorem1 import theorem1
+
+        (theorem1,) = find_items(item_name)  # the theorem this job belongs to (the catalogue passes its name)
 
         progress = progress or (lambda msg: None)
         progress(f"{item_name}: the chain at the run's values")

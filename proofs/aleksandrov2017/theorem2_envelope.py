@@ -295,10 +295,12 @@ class ProvedEnvelopeAgainstRun:
     def run(self, item_name, values, shown, *, budget=120.0, progress=None, goal=None):
         """(Report, data for :meth:`plot`)."""
         from lkverify import Report, Result
+        from lkverify.catalogue import find_items
         from lkverify.simulate import simulate
 
         from .example import INITIAL, initial_history
-        from .theorem2 import theorem2
+
+        (theorem2,) = find_items(item_name)  # the theorem this job belongs to (the catalogue passes its name)
 
         progress = progress or (lambda msg: None)
         progress(f"{item_name}: the chain at the run's values")

@@ -30,7 +30,7 @@ Why not ``Converges``: at T = 2000 the distance for β = 7/8 is still about 0.25
 """
 
 from lkverify.simulate import DecaysAlgebraically, DoesNotConverge, FromValues, LimitAboveFloor, Run, Series
-from lkverify.simulate.figures import FigureExample
+from lkverify.catalogue.examples import Example
 
 from .equations import PAPER
 from .example import HISTORY, INITIAL, distance, example, per_vector_distance, remark2_energy
@@ -52,7 +52,7 @@ def _caption(values, history, convention, overridden):
             r"section 6 initial data")
 
 
-theorem2_example = FigureExample(
+theorem2_example = Example(
     "theorem2_example",
     caption=_caption, run_caption=example.run_caption, initial=INITIAL,
     distances={"combined": distance, "per-vector": per_vector_distance},

@@ -11,7 +11,8 @@ import sympy
 
 from lkverify.certify.decay import StatedAt
 from lkverify.simulate import Run, Series
-from lkverify.simulate.figures import AngleHistory, FigureExample, show_value, show_vector
+from lkverify.catalogue.examples import Example
+from lkverify.simulate.figures import AngleHistory, show_value, show_vector
 from lkverify.simulate.rigidbody import DEFAULT_CONVENTION, inertial_vectors_from_angles
 
 from .equations import PAPER, P, system
@@ -80,7 +81,7 @@ def figure(name, title, values, claims, *, t_end, history=SECTION6, envelope=Non
     ``title`` is the catalogue's name of the run, which the claims refer to.
     """
     number = int(name[3:])
-    return FigureExample(name, title=title, runs=[Run(title, system, values, history)], t_end=t_end,
+    return Example(name, title=title, runs=[Run(title, system, values, history)], t_end=t_end,
                          series=DIRECTION_COSINES, distances={"combined": distance, "per-vector": s_minus_r},
                          claims=claims, ylabel="direction cosines", envelope=envelope, samples=samples,
                          plot_until=100, paper=PAPER, caption=caption(number), initial=INITIAL[number],

@@ -161,7 +161,7 @@ class _Conclusion(Krasovskii):
 
     def certify(self, steps, values, **kw):
         from lkverify import Result, Status
-        from lkverify.certify.steps.chain import _coefficient_sign, collect_monomials
+        from lkverify.certify.steps.chain import coefficient_sign, collect_monomials
         from lkverify.declare.parameters import apply_substitution
 
         rows, status, detail = super().certify(steps, values, **kw)
@@ -174,7 +174,7 @@ class _Conclusion(Krasovskii):
         gap = sympy.expand(apply_substitution(sympy.sympify(gap).xreplace(sub), sub))
         worst, why = Status.EXACT, ""
         for mono, coeff in collect_monomials(gap, {m.symbol for m in MEASURES}).items():
-            sign, st = _coefficient_sign(coeff)
+            sign, st = coefficient_sign(coeff)
             if sign is None or sign < 0:
                 worst = Status.UNDECIDED if sign is None else Status.FAILED
                 why = f"the coefficient of {mono} in W exceeds the printed one by {-float(coeff):.4g}"

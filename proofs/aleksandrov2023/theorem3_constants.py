@@ -37,7 +37,7 @@ def theorem3_model(v, c, *, budget=None, progress=None):
 
     Returns ``(build, results)``; ``build`` is None when a step is not proved.
     """
-    from .theorem3 import steps
+    from .theorem3_functional import steps
 
     top = {k: sympy.Rational(hi).limit_denominator(1000) for k, (lo, hi) in FREE.items() if k.startswith("delta")}
     values = {**v, **top}

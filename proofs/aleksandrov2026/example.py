@@ -6,7 +6,8 @@ t0 = 0, constant initial functions on [−1, 0]; the PID run converges faster an
 import numpy as np
 
 from lkverify.simulate import Converges, FasterThan, Run, Series, SmootherThan
-from lkverify.simulate.figures import FigureExample, show_vector
+from lkverify.catalogue.examples import Example
+from lkverify.simulate.figures import show_vector
 
 from .equations import PAPER, P, system, system_pid
 
@@ -40,7 +41,7 @@ def _caption(values, history, convention, overridden):
 
 
 DELAYED, PID = "delayed feedback (7)", "PID (13), G = exp(−2ζ)I"
-example = FigureExample(
+example = Example(
     "example",
     caption=_caption, distances={"combined": _distance, "per-vector": _per_vector},
     vectors=[("‖s1 − r1‖", _e1), ("‖s2 − r2‖", _e2)], targets=[0.0, 0.0], ylabel_tex=r"$\|s_i - r_i\|$",

@@ -363,7 +363,7 @@ class _Conclusion(MemoryKrasovskii):
 
     def certify(self, checked, values, **kw):
         from lkverify import Result
-        from lkverify.certify.steps.chain import _coefficient_sign
+        from lkverify.certify.steps.chain import coefficient_sign
 
         rows, status, detail = super().certify(checked, values, **kw)
         sub = dict(system_pid.parameters.substitution(values))
@@ -373,7 +373,7 @@ class _Conclusion(MemoryKrasovskii):
             gap = apply_substitution(sympy.sympify(gap).xreplace(sub), sub)
             worst, why = Status.EXACT, ""
             for mono, coeff in collect_monomials(sympy.expand(gap), meas).items():
-                sign, st = _coefficient_sign(coeff)
+                sign, st = coefficient_sign(coeff)
                 if sign is None or sign < 0:
                     worst = Status.UNDECIDED if sign is None else Status.FAILED
                     why = f"the coefficient of {mono} falls short by {float(coeff):.4g}"

@@ -93,7 +93,7 @@ def test_fig7_envelope_states_its_region():
 
 
 def _user_example():
-    """A user-built Example (not a FigureExample): x' = −a x(t − τ) from x ≡ 1."""
+    """A user-built Example (no captions or named distances): x' = −a x(t − τ) from x ≡ 1."""
     import sympy
 
     from lkverify import Equation, Parameters, Series, System, Term, Vector, t

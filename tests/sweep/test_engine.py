@@ -18,6 +18,7 @@ from lkverify import Equation, InputError, Parameters, Series, System, Term, Vec
 from lkverify.catalogue.examples import Example
 from lkverify.simulate import Run
 from lkverify.sweep import Grid, SweepOptions, build_plan, classify, sweep
+from lkverify.sweep import cluster as cluster_module
 from lkverify.sweep import engine as engine_module
 from lkverify.simulate.solver import Outcome
 
@@ -99,7 +100,7 @@ def test_existing_scheduler_with_and_without_workers(serial, tmp_path, monkeypat
                     options=SweepOptions(scheduler=cluster.scheduler_address, chunk_size=4))
     names = serial.table.column_names
     assert res.complete and columns(res.table, names) == columns(serial.table, names)
-    monkeypatch.setattr(engine_module, "WORKER_WAIT_SECONDS", 1.0)
+    monkeypatch.setattr(cluster_module, "WORKER_WAIT_SECONDS", 1.0)
     with LocalCluster(n_workers=0, processes=False, dashboard_address=None) as empty:
         with pytest.raises(InputError, match="no workers"):
             sweep(toy(), grid=["a=0.5:1:2"], out=tmp_path / "none.parquet",
@@ -162,7 +163,7 @@ def test_bad_input(tmp_path, grid, sets, message):
 
 
 def test_bad_output_path_and_scheduler(tmp_path, monkeypatch):
-    monkeypatch.setattr(engine_module, "SCHEDULER_TIMEOUT_SECONDS", 2.0)
+    monkeypatch.setattr(cluster_module, "SCHEDULER_TIMEOUT_SECONDS", 2.0)
     with pytest.raises(InputError, match="does not exist"):
         sweep(toy(), grid=["a=0:1:3"], out=tmp_path / "no" / "x.parquet", options=SERIAL)
     with pytest.raises(InputError, match="ending in .parquet"):

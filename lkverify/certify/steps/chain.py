@@ -630,5 +630,5 @@ def lyapunov_steps(functional, system, lower, upper, vdot, measures, *, region=N
 
 
 # the conclusions of a chain live in steps.conclusions (they use this module's helpers)
-from .conclusions import (Decay, Krasovskii, _coefficient_sign, _coefficients_nonnegative,  # noqa: E402,F401
+from .conclusions import (Decay, Krasovskii, coefficient_sign, _coefficients_nonnegative,  # noqa: E402,F401
                           _positive_rate_point, _prime_powers, collect_monomials)

@@ -14,10 +14,11 @@ import sympy
 from ...errors import InputError
 from ...report.results import Kind, Result
 from ...status import Status
+from ..monomials import collect_monomials
 from .measures import Region
 from .rules import nonnegative
 
-__all__ = ["Decay", "Krasovskii", "collect_monomials"]
+__all__ = ["Decay", "Krasovskii", "coefficient_sign", "collect_monomials"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -285,32 +286,25 @@ def _coefficients_nonnegative(expr, symbols) -> tuple:
     """(True, exact/certified) when every coefficient of ``expr`` is a number ≥ 0 (its monomials are ≥ 0)."""
     worst = Status.EXACT
     for mono, c in collect_monomials(expr, symbols).items():
-        sign, how = _coefficient_sign(c)
+        sign, how = coefficient_sign(c)
         if sign is None or sign < 0 or not nonnegative(mono):
             return False, Status.UNDECIDED
         worst = Status.CERTIFIED if how is Status.CERTIFIED else worst
     return True, worst
 
 
-def collect_monomials(expr, symbols) -> dict:
-    """{monomial in ``symbols``: its coefficient} of an expanded expression (coefficients summed).
+def coefficient_sign(c):
+    """``(sign, status)`` of a numeric coefficient: exact for rationals, certified by arb enclosures otherwise.
+
+    ``sign`` is −1, 0 or 1; ``(None, undecided)`` for a coefficient with symbols, or one the
+    interval layer cannot enclose.
 
     >>> import sympy
-    >>> x, y, a = sympy.symbols("x y a", nonnegative=True)
-    >>> sorted(collect_monomials(3 * x**2 + a * x**2 - y * x + 2, {x, y}).items(), key=str)
-    [(1, 2), (x**2, a + 3), (x*y, -1)]
+    >>> coefficient_sign(sympy.Rational(-3, 7)), coefficient_sign(sympy.sqrt(2) - sympy.Rational(141, 100))
+    ((-1, <Status.EXACT: 'exact'>), (1, <Status.CERTIFIED: 'certified'>))
+    >>> coefficient_sign(sympy.Symbol("a"))
+    (None, <Status.UNDECIDED: 'undecided'>)
     """
-    from .rewrites import _split
-
-    out: dict = {}
-    for c, m in _split(expr, set(symbols)):
-        m = sympy.powsimp(m, force=True)
-        out[m] = out.get(m, sympy.S.Zero) + c
-    return {m: c for m, c in out.items() if c != 0}
-
-
-def _coefficient_sign(c):
-    """(sign, status) of a numeric coefficient: exact for rationals, certified by arb enclosures otherwise."""
     from ..intervals import sign_of
 
     c = sympy.sympify(c)
@@ -386,7 +380,7 @@ class Krasovskii:
                     if name == "U":
                         return f"U has the constant term {c}, so U(0) ≠ 0"
                     continue
-                sign, st = _coefficient_sign(c)
+                sign, st = coefficient_sign(c)
                 if sign is None:
                     statuses.append(Status.UNDECIDED)
                     return f"the sign of the coefficient {c} of {mono} in {name} is not decided"

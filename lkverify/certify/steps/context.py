@@ -20,7 +20,7 @@ from ...errors import InputError
 from ...status import Status
 from .measures import Measure, Region
 
-__all__ = ["Application", "Condition", "Context", "decided", "nonnegative", "sign_of"]
+__all__ = ["Application", "Condition", "Context", "Rule", "decided", "nonnegative", "sign_of"]
 
 _T_NONNEGATIVE = sympy.Symbol("t", nonnegative=True)  # t on its domain t ≥ 0 (Context.zero)
 
@@ -201,6 +201,15 @@ class Application:
         return {"rule": self.rule, "bound": str(self.bound), "status": self.status.value,
                 "conditions": [c.to_json() for c in self.conditions],
                 "constants": {name: value for name, value, _ in self.constants}}
+
+
+class Rule:
+    """A checked rule.  ``apply(term, direction, ctx)`` → :class:`Application` (direction "upper": term ≤ bound)."""
+
+    name = "rule"
+
+    def apply(self, term, direction: str, ctx: Context) -> Application:  # pragma: no cover - interface
+        raise NotImplementedError
 
 
 def decided(text, ok, detail="", *, certified=False) -> Condition:

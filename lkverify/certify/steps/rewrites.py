@@ -45,6 +45,7 @@ from collections.abc import Callable
 import sympy
 
 from ...status import Status
+from ..monomials import split_terms as _split
 from .rules import Application, Condition, Rule, _cond, conjugate_exponents, nonnegative
 
 __all__ = ["LowerBound", "OnRegion", "PowerSplit", "WindowHolder", "YoungEach"]
@@ -52,20 +53,6 @@ __all__ = ["LowerBound", "OnRegion", "PowerSplit", "WindowHolder", "YoungEach"]
 
 def _measure_symbols(ctx) -> set:
     return {m.symbol for m in ctx.measures.values()}
-
-
-def _split(expr, symbols):
-    """[(c, monomial)] for the additive terms of expr: c free of ``symbols``."""
-    out = []
-    for term in sympy.Add.make_args(sympy.expand(expr)):
-        c, m = sympy.S.One, sympy.S.One
-        for f in sympy.Mul.make_args(term):
-            if f.free_symbols & symbols:
-                m *= f
-            else:
-                c *= f
-        out.append((c, m))
-    return out
 
 
 def _signed(c, direction) -> bool | None:

@@ -64,7 +64,7 @@ from ...errors import InputError
 from ...status import Status
 from ..matrices import matrix_positive_definite
 # re-exported: moved to steps.context (what a rule works with and returns) and steps.norms (how a norm tree is checked)
-from .context import (Application, Condition, Context, _abs_factor, _cond, _factor_sign, _sign, decided,  # noqa: F401
+from .context import (Application, Condition, Context, Rule, _abs_factor, _cond, _factor_sign, _sign, decided,  # noqa: F401
                       nonnegative, sign_of)
 from .measures import Measure
 from .norms import (FieldNorm, Norm, _integrand, _resolve_norm, _window_factor, conjugate_exponents,  # noqa: F401
@@ -275,15 +275,6 @@ def integral_of(pointwise: Norm, *, measure=None, power, weight=1, window=None, 
 
 
 # -- rules --------------------------------------------------------------------------------------
-class Rule:
-    """A checked rule.  ``apply(term, direction, ctx)`` → :class:`Application` (direction "upper": term ≤ bound)."""
-
-    name = "rule"
-
-    def apply(self, term, direction: str, ctx: Context) -> Application:  # pragma: no cover - interface
-        raise NotImplementedError
-
-
 @dataclasses.dataclass(frozen=True)
 class Printed(Rule):
     """The step as the paper prints it, with no checkable rule ("there exist constants c_k …").
@@ -695,6 +686,6 @@ class Young(Rule):
         return self.rewrite(ctx.at(term), ctx, direction)
 
 
-# the certified-supremum rules live in steps.templates (they import this module's conditions)
+# the certified-supremum rules live in steps.templates (on steps.context, like this module)
 from .templates import (_HOMOGENEOUS_CACHE, TEMPLATE_ACCURACY, TEMPLATE_BOXES, TEMPLATE_ENCLOSURE,  # noqa: E402
                         Homogeneous, Template, _homogeneous_sup)

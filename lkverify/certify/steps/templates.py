@@ -16,7 +16,7 @@ from sympy.core.function import AppliedUndef
 from ...declare.symbols import t
 from ...errors import InputError
 from ...status import Status
-from .rules import Application, Context, Rule, _cond, _factor_sign  # noqa: F401 (Context: the doctests)
+from .context import Application, Context, Rule, _cond, _factor_sign  # noqa: F401 (Context: the doctests)
 
 __all__ = ["Homogeneous", "Template"]
 

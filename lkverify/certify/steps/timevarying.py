@@ -41,7 +41,7 @@ import sympy
 from ...declare.symbols import t as _t
 from ...report.results import Result
 from ...status import Status
-from .chain import _coefficient_sign, collect_monomials
+from .chain import coefficient_sign, collect_monomials
 from .rewrites import LowerBound
 
 __all__ = ["TimeVaryingRate", "UpperBound", "sup_in_t", "sup_on"]
@@ -111,7 +111,7 @@ def sup_on(expr, x, H):
         return None, f"{expr} is not a sum of numeric multiples of powers of {x}"
     total = sympy.S.Zero
     for c, p in terms:
-        sign, _ = _coefficient_sign(c)
+        sign, _ = coefficient_sign(c)
         if sign is None:
             return None, f"the sign of {c} is not decided"
         if sign == 0:
@@ -174,7 +174,7 @@ def _weakest(statuses):
 
 def _decided_sign(value, statuses):
     """The sign of a numeric value (exact for rationals, arb otherwise), its status appended to ``statuses``."""
-    sign, st = _coefficient_sign(sympy.sympify(value))
+    sign, st = coefficient_sign(sympy.sympify(value))
     statuses.append(st if sign is not None else Status.UNDECIDED)
     return sign
 

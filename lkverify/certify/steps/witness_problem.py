@@ -218,36 +218,35 @@ def _newton_cotes(d: int) -> tuple:
     return nodes, tuple(weights)
 
 
+def _checked_arguments(system, values, measures, region) -> tuple:
+    """The measures as a tuple, after the arguments of a witness search are checked (InputError)."""
+    if not isinstance(system, System):
+        raise InputError(f"system: expected an lkverify System, got {type(system).__name__}")
+    if not isinstance(values, Mapping):
+        raise InputError(f"values: expected a mapping name → value (Parameters.resolve), got "
+                         f"{type(values).__name__}")
+    measures = tuple(measures)
+    for m in measures:
+        if not isinstance(m, Measure):
+            raise InputError(f"measures: expected Measure objects (norm_measure, window_norm, …), got "
+                             f"{type(m).__name__}")
+    names = [m.name for m in measures]
+    if len(set(names)) != len(names):
+        raise InputError(f"measures: expected distinct names, got {names}")
+    if region is not None and not isinstance(region, Region):
+        raise InputError(f"region: expected a Region or None, got {type(region).__name__}")
+    return measures
+
+
 class _Problem:
     """Everything about the claim that does not depend on the number of pieces."""
 
     def __init__(self, lhs, rhs, system, values, measures, region, exists, nonnegative, time=None):
-        if not isinstance(system, System):
-            raise InputError(f"system: expected an lkverify System, got {type(system).__name__}")
-        if not isinstance(values, Mapping):
-            raise InputError(f"values: expected a mapping name → value (Parameters.resolve), got "
-                             f"{type(values).__name__}")
-        measures = tuple(measures)
-        for m in measures:
-            if not isinstance(m, Measure):
-                raise InputError(f"measures: expected Measure objects (norm_measure, window_norm, …), got "
-                                 f"{type(m).__name__}")
-        names = [m.name for m in measures]
-        if len(set(names)) != len(names):
-            raise InputError(f"measures: expected distinct names, got {names}")
-        if region is not None and not isinstance(region, Region):
-            raise InputError(f"region: expected a Region or None, got {type(region).__name__}")
+        measures = _checked_arguments(system, values, measures, region)
         self.system = system
         self._charts: dict = {}
         self.time, self.time_range = _time_argument(time)
-        # the state of each component function; a frame's three vectors are one state (a rotation)
-        self.funcs = dict(system.state_functions())
-        self.groups: dict = {}
-        for st in system.states:
-            if st.frame is not None and id(st.frame) not in self.groups:
-                group = self.groups[id(st.frame)] = _FrameGroup(st.frame)
-                for i, f in enumerate(group.functions):
-                    self.funcs[f] = (group, i)
+        self._group_frames()
         try:
             sub = system.parameters.substitution(values)
         except KeyError as exc:
@@ -259,7 +258,25 @@ class _Problem:
         self.measures = measures
         self.msyms = {m.symbol: m for m in measures}
         self._memory_time([e for _, e in self.terms] + [self.rhs], measures)
-        # the measures after substitution
+        self._substitute_measures()
+        self._constants_for_every(exists, nonnegative, [m.name for m in measures])
+        self._scan_atoms()
+        self._windows(region)
+
+    def _group_frames(self) -> None:
+        """The state of each component function; a frame's three vectors are one state (a rotation)."""
+        system = self.system
+        self.funcs = dict(system.state_functions())
+        self.groups: dict = {}
+        for st in system.states:
+            if st.frame is not None and id(st.frame) not in self.groups:
+                group = self.groups[id(st.frame)] = _FrameGroup(st.frame)
+                for i, f in enumerate(group.functions):
+                    self.funcs[f] = (group, i)
+
+    def _substitute_measures(self) -> None:
+        """The measures after substitution: (vector, window, power) by name, and the memory kernels."""
+        sub, measures = self.sub, self.measures
         self.mdata = {}
         self.kernels = {}
         for m in measures:
@@ -278,7 +295,9 @@ class _Problem:
             if m.kind != "norm" and not window.is_positive:
                 raise InputError(f"measure {m.name}: window: expected a positive length, got {window}")
             self.mdata[m.name] = (vec, window, power)
-        # the constants "for every c ≥ 0"
+
+    def _constants_for_every(self, exists, nonnegative, names) -> None:
+        """The constants "for every c ≥ 0" (``exists``, ``nonnegative``); every other symbol needs a value."""
         wanted = set(_names(exists, "exists")) | set(_names(nonnegative, "nonnegative"))
         clash = wanted & set(names)
         if clash:
@@ -294,7 +313,10 @@ class _Problem:
             raise InputError(f"lhs/rhs: expected every symbol to have a value, got {sorted(map(str, left))} without "
                              f"one; give them values, list them in exists= (some constant ≥ 0) or nonnegative=, or "
                              f"pass their Measure in measures=")
-        # atoms and integrals
+
+    def _scan_atoms(self) -> None:
+        """The point atoms, the histories and the window integrals of the claim; the states it uses."""
+        system, measures = self.system, self.measures
         self.points: dict = {}        # (state, c) → set of atoms
         self.history_states: list = []
         self.integrals: dict = {}     # Integral node → _Integral
@@ -319,7 +341,10 @@ class _Problem:
             if st.unit and st.dim != 3:
                 raise UnsupportedClaim(f"state {st.name}: expected a unit vector of dimension 3, got dimension "
                                        f"{st.dim}; other spheres are not supported yet")
-        # windows
+
+    def _windows(self, region) -> None:
+        """The longest window H, the region's constraints, the break points of [t − H, t], the rotating states."""
+        measures = self.measures
         hs = [i.h1 for i in self.integrals.values()]
         hs += [self.mdata[m.name][1] for m in measures if m.kind in ("window_norm", "window_integral", MEMORY)]
         self.H = max(hs, key=float) if hs and self.history_states else sympy.Integer(0)
