@@ -17,6 +17,9 @@
     instability certified: a characteristic root enclosed in the open right half-plane (interval Newton in arb);
 :mod:`.stretches`
     certified stable *and* unstable delay intervals (crossing delays enclosed in arb, one proof per interval);
+:mod:`.independent`
+    stability for every delay decided exactly (no crossing frequency, A + A_d Hurwitz) and certified by
+    V = xᵀPx + ∫_{t−h}^t xᵀQx (an exact rational P, Q): the infinite delay margin;
 :mod:`.margin`
     the largest (and smallest) delay of a stability interval with a verified certificate, by bisection;
 :mod:`.linearise`
@@ -34,6 +37,8 @@ from .interval import IntervalCertificate, certify_cover, certify_interval
 from .instability import Instability, RootBall, newton_test, refute_stability
 from .stretches import CertifiedStretch, certify_stretches, crossing_enclosures
 from .margin import CertifiedInterval, certified_interval
+from .independent import (DelayIndependence, IndependentCertificate, check_independent_certificate,
+                          delay_independence, solve_independent_certificate)
 from .linearise import Linearisation, linearise, linearise_at, tangent_basis
 from .family import LinearBatch, LinearFamily, linear_family
 from .model import LinearDelaySystem, parse_delay
@@ -50,4 +55,6 @@ __all__ = [
     "LinearBatch", "LinearFamily", "linear_family",
     "Instability", "RootBall", "newton_test", "refute_stability",
     "CertifiedStretch", "certify_stretches", "crossing_enclosures",
+    "DelayIndependence", "IndependentCertificate", "check_independent_certificate", "delay_independence",
+    "solve_independent_certificate",
 ]

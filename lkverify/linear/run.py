@@ -23,6 +23,7 @@ from ..report.results import Report, Result
 from ..status import Status
 from .crossing import stability_intervals
 from .hierarchy import certify_delay, method_name
+from .independent import FUNCTIONAL, certificate_detail, delay_independence
 from .instability import refute_stability
 from .margin import certified_interval
 from .model import LinearDelaySystem, parse_delay
@@ -115,6 +116,13 @@ def linear_report(values: dict, *, orders=DEFAULT_ORDERS, h_max: float = 20.0, h
         With ``h``: "stable at h" is ``failed`` when a characteristic root is certified in the
         open right half-plane (:func:`~lkverify.linear.instability.refute_stability`; no LMI is
         solved then), ``exact``/``certified`` when an order's LMI verified, else ``undecided``.
+        Without ``h``, a system whose stability does not depend on the delay (no crossing
+        frequency ω > 0, decided exactly: :func:`~lkverify.linear.independent.delay_independence`)
+        gets no margin search: the row "stable for every delay h ≥ 0" (``exact``, its value's
+        ``margin_infinite`` True and ``delay_margin`` "infinite"; ``failed`` when A + A_d is not
+        Hurwitz: stable for no delay) and, when stable, "delay-independent LK certificate"
+        (P, Q of V = xᵀPx + ∫_{t−h}^t xᵀQx as exact rational strings, verified exactly; ``undecided``
+        when the LMI, only sufficient, gave none).
 
     Examples
     --------
@@ -124,6 +132,11 @@ def linear_report(values: dict, *, orders=DEFAULT_ORDERS, h_max: float = 20.0, h
     >>> rep = linear_report({"A": [[1]], "Ad": [["-1/2"]]}, orders=(1,), h="1", h_max=5)   # x′ = x − x(t−1)/2
     >>> rep.results[-1].status.value, rep.exit_code, rep.verdict[:40]
     ('failed', 1, 'unstable at h = 1: a characteristic root')
+    >>> rep = linear_report({"A": [[-2]], "Ad": [[1]]})                 # x′ = −2x + x(t−h): no crossing
+    >>> [(r.name, r.status.value) for r in rep.results], rep.results[0].value["margin_infinite"]
+    ([('stable for every delay h ≥ 0', 'exact'), ('delay-independent LK certificate', 'exact')], True)
+    >>> rep.verdict[:60], rep.results[1].value["P"]                        # doctest: +ELLIPSIS
+    ('stable for every delay h ≥ 0, delay margin infinite (exact: ', [['.../...']])
     """
     say = say or (lambda *a, **k: None)
     if not (isinstance(h_max, (int, float)) and math.isfinite(h_max) and h_max > 0):
@@ -135,6 +148,11 @@ def linear_report(values: dict, *, orders=DEFAULT_ORDERS, h_max: float = 20.0, h
         sp = rightmost_roots(system, float(hq))
         results.append(Result("linear", f"spectral abscissa at h = {hq}", Status.ESTIMATED, sp.abscissa,
                               f"rightmost root {sp.roots[0]:.6g}; {sp.detail}"))
+    if hq is None:
+        say("delay independence: crossing frequencies and A + A_d at h = 0, exactly")
+        di = delay_independence(system)
+        if di.applies:  # stable (or not) for every delay: no margin to search, no h_max in the answer
+            return _independent_report(values, system, di, h_max, plot)
     t0 = time.perf_counter()
     iv = stability_intervals(system, h_max=h_max)
     t_spec = time.perf_counter() - t0
@@ -170,6 +188,48 @@ def linear_report(values: dict, *, orders=DEFAULT_ORDERS, h_max: float = 20.0, h
         path = plot_linear(system, plot, intervals=iv, h=None if hq is None else float(hq), certified=certified)
         details = (f"figure: {path}",)
     return Report("linear", dict(values), tuple(results), verdict, text_details=details)
+
+
+def _independent_rows(di) -> list:
+    """The exact decision for every delay (and, when stable, the delay-independent LK certificate)."""
+    value = {**({"value": math.inf} if di.stable else {}), "stable": di.stable,
+             "delay_margin": "infinite" if di.stable else None,
+             "margin_infinite": di.margin_infinite, "hurwitz_at_h0": di.hurwitz,
+             "positive_crossing_frequencies": di.positive_roots,
+             "frequency_polynomial": None if di.polynomial is None else str(di.polynomial.as_expr())}
+    rows = [Result("linear", "stable for every delay h ≥ 0", di.status, value, di.detail)]
+    if di.stable:
+        cert = {"certified": di.certified, "functional": FUNCTIONAL, "margin_infinite": di.certified,
+                **(di.certificate.to_json() if di.certificate is not None else {"P": None, "Q": None})}
+        status = di.check.status if di.certified else Status.UNDECIDED   # not found refutes nothing
+        rows.append(Result("linear", "delay-independent LK certificate", status, cert, certificate_detail(di)))
+    return rows
+
+
+def _independent_verdict(di) -> str:
+    if not di.stable and di.detail.startswith("unstable"):
+        return (f"unstable for every delay h ≥ 0: A + A_d has a root with Re λ > 0 and no root crosses the "
+                f"imaginary axis for any h ({di.status.value}; decided exactly)")
+    if not di.stable:
+        return (f"asymptotically stable for no delay h ≥ 0: det(A + A_d) = 0, λ = 0 is a characteristic root for "
+                f"every h ({di.status.value}; decided exactly)")
+    text = (f"stable for every delay h ≥ 0, delay margin infinite ({di.status.value}: no crossing frequency, "
+            "A + A_d Hurwitz)")
+    if di.certified:
+        return text + f"; certified by {FUNCTIONAL}, P and Q verified exactly ({di.check.status.value})"
+    return text + "; no delay-independent LK certificate found (the LMI is only sufficient)"
+
+
+def _independent_report(values, system, di, h_max, plot) -> Report:
+    """The report of a system whose stability does not depend on the delay (:mod:`lkverify.linear.independent`)."""
+    details = ()
+    if plot is not None:
+        from .figures import plot_linear
+        path = plot_linear(system, plot, intervals=stability_intervals(system, h_max=h_max),
+                           title="spectral abscissa (stability does not depend on h)")
+        details = (f"figure: {path}",)
+    return Report("linear", dict(values), tuple(_independent_rows(di)), _independent_verdict(di),
+                  text_details=details)
 
 
 def _certified(system, iv, h_max):
