@@ -21,38 +21,58 @@ The pipeline is in the subpackages, one per stage (data flows one way):
     results, JSON, text and the command line.
 
 This module re-exports what a proof file needs, so that a proof imports from
-``lkverify`` alone.
+``lkverify`` alone.  The names are imported on first use (``from lkverify import Theorem``
+imports :mod:`lkverify.catalogue.items` then), so ``import lkverify`` itself is light.
 """
 
-from .catalogue.items import Check, Item, Link, Theorem
-from .certify.hypotheses import Hypothesis, MatrixHypothesis
-from .certify.steps import BoundClaim, QuadraticForms
-from .declare.functional import Functional, memory_integral, tail_integral, window_integral
-from .declare.parameters import ParameterKind, Parameters, ParameterSpec
-from .declare.rigidbody import (distance_sum, euler_equation, gyroscopic_term, poisson_equation, poisson_equations,
-                                restoring_torque, restoring_torque_rate)
-from .declare.states import Frame, UnitVector, Vector
-from .declare.symbols import t, xi, zeta
-from .declare.system import Equation, System
-from .declare.terms import Term
-from .declare.vectors import cross, dot, norm, norm_power, norm_squared, quad
-from .errors import InputError, LkverifyError, UnsupportedInput
-from .options import Accuracy, Budget, BudgetExceeded, Deadline
-from .report.results import Kind, Report, Result
-from .status import Status
-from .symbolic.claims import DerivativeClaim, IdentityClaim
-from .symbolic.derivative import Block, DerivativeResult, derivative_along
-from .symbolic.identity import IdentityResult, TermDifference, check_identity
-from .catalogue.examples import Example
-from .catalogue.boxrun import BoxPiece, BoxReport, BoxStatus, FailingPoint, run_over_box
-from .declare.boxes import ParameterBox
-from .certify.constants import ConstantsJob, Template
-from .linear import (LinearDelaySystem, certified_interval, certify_delay, linear_report, rightmost_roots,
-                     stability_intervals)
-from .linear import linear_family, linearise, linearise_at
-from .simulate import (BoundedNotAttractive, Converges, DoesNotConverge, EnvelopeSpec, FasterThan, FromValues, Run,
-                       Sensitive, Series, SmootherThan, StepControl, compile_family)
-from .sweep import SweepOptions, SweepResult  # the job itself is lkverify.sweep.sweep (the name is the subpackage's)
+import importlib
+
+from ._version import __version__
+
+#: public name → the submodule that defines it; imported on first use (PEP 562), so that
+#: ``import lkverify`` (and the command line's ``--help``, ``--version``, ``list``) loads no SymPy
+_SOURCES = {
+    "Check": ".catalogue.items", "Item": ".catalogue.items", "Link": ".catalogue.items",
+    "Theorem": ".catalogue.items",
+    "Hypothesis": ".certify.hypotheses", "MatrixHypothesis": ".certify.hypotheses",
+    "BoundClaim": ".certify.steps", "QuadraticForms": ".certify.steps",
+    "Functional": ".declare.functional", "memory_integral": ".declare.functional",
+    "tail_integral": ".declare.functional", "window_integral": ".declare.functional",
+    "ParameterKind": ".declare.parameters", "Parameters": ".declare.parameters",
+    "ParameterSpec": ".declare.parameters",
+    "distance_sum": ".declare.rigidbody", "euler_equation": ".declare.rigidbody",
+    "gyroscopic_term": ".declare.rigidbody", "poisson_equation": ".declare.rigidbody",
+    "poisson_equations": ".declare.rigidbody", "restoring_torque": ".declare.rigidbody",
+    "restoring_torque_rate": ".declare.rigidbody",
+    "Frame": ".declare.states", "UnitVector": ".declare.states", "Vector": ".declare.states",
+    "t": ".declare.symbols", "xi": ".declare.symbols", "zeta": ".declare.symbols",
+    "Equation": ".declare.system", "System": ".declare.system",
+    "Term": ".declare.terms",
+    "cross": ".declare.vectors", "dot": ".declare.vectors", "norm": ".declare.vectors",
+    "norm_power": ".declare.vectors", "norm_squared": ".declare.vectors", "quad": ".declare.vectors",
+    "InputError": ".errors", "LkverifyError": ".errors", "UnsupportedInput": ".errors",
+    "Accuracy": ".options", "Budget": ".options", "BudgetExceeded": ".options", "Deadline": ".options",
+    "Kind": ".report.results", "Report": ".report.results", "Result": ".report.results",
+    "Status": ".status",
+    "DerivativeClaim": ".symbolic.claims", "IdentityClaim": ".symbolic.claims",
+    "Block": ".symbolic.derivative", "DerivativeResult": ".symbolic.derivative",
+    "derivative_along": ".symbolic.derivative",
+    "IdentityResult": ".symbolic.identity", "TermDifference": ".symbolic.identity",
+    "check_identity": ".symbolic.identity",
+    "Example": ".catalogue.examples",
+    "BoxPiece": ".catalogue.boxrun", "BoxReport": ".catalogue.boxrun", "BoxStatus": ".catalogue.boxrun",
+    "FailingPoint": ".catalogue.boxrun", "run_over_box": ".catalogue.boxrun",
+    "ParameterBox": ".declare.boxes",
+    "ConstantsJob": ".certify.constants", "Template": ".certify.constants",
+    "LinearDelaySystem": ".linear", "certified_interval": ".linear", "certify_delay": ".linear",
+    "linear_report": ".linear", "rightmost_roots": ".linear", "stability_intervals": ".linear",
+    "linear_family": ".linear", "linearise": ".linear", "linearise_at": ".linear",
+    "BoundedNotAttractive": ".simulate", "Converges": ".simulate", "DoesNotConverge": ".simulate",
+    "EnvelopeSpec": ".simulate", "FasterThan": ".simulate", "FromValues": ".simulate", "Run": ".simulate",
+    "Sensitive": ".simulate", "Series": ".simulate", "SmootherThan": ".simulate", "StepControl": ".simulate",
+    "compile_family": ".simulate",
+    "SweepOptions": ".sweep", "SweepResult": ".sweep",  # the job itself is lkverify.sweep.sweep (the subpackage's name)
+}
 
 __all__ = [
     "Accuracy", "Block", "BoundClaim", "Budget", "QuadraticForms", "BudgetExceeded", "Check", "Deadline", "DerivativeClaim", "DerivativeResult",
@@ -77,5 +97,17 @@ __all__ = [
     "BoxPiece", "BoxReport", "BoxStatus", "FailingPoint", "ParameterBox", "run_over_box",
 ]
 
-from ._version import __version__  # noqa: E402
+
+def __getattr__(name: str):
+    """The public name ``name``, imported from its submodule on first use and kept."""
+    source = _SOURCES.get(name)
+    if source is None:
+        raise AttributeError(f"module 'lkverify' has no attribute {name!r}")
+    value = getattr(importlib.import_module(source, __name__), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(__all__))
 

@@ -43,11 +43,13 @@ import time
 
 from .errors import InputError, _OwnNames
 
-__all__ = ["Accuracy", "Budget", "BudgetExceeded", "Deadline", "MAX_BUDGET_SECONDS", "TIMER_CAP_SECONDS", "RETRY_SECONDS",
-           "ceiling", "wall_clock_ceilings", "work_limits"]
+__all__ = ["Accuracy", "Budget", "BudgetExceeded", "Deadline", "LOAD_LIMIT_SECONDS", "MAX_BUDGET_SECONDS",
+           "TIMER_CAP_SECONDS", "RETRY_SECONDS", "ceiling", "wall_clock_ceilings", "work_limits"]
 
 #: the largest ``--budget`` the command line accepts (seconds, about 11.6 days)
 MAX_BUDGET_SECONDS = 1e6
+#: default time limit for loading (importing) one proof file, in seconds (``--load-limit``; not a ``--budget``)
+LOAD_LIMIT_SECONDS = 60.0
 #: the interval timer is never armed further ahead than this (it is re-armed when it fires early)
 TIMER_CAP_SECONDS = 1e6
 #: after an enclosing budget ran out, the alarm fires again at this interval until its block is left

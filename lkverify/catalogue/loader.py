@@ -33,21 +33,16 @@ import pkgutil
 import sys
 from pathlib import Path
 
-from sympy.core.function import AppliedUndef
-
-from ..options import BudgetExceeded, Deadline
+from ..options import LOAD_LIMIT_SECONDS, BudgetExceeded, Deadline
 from ..errors import InputError
-from .items import Item
+from .index import PROOFS_PACKAGE, package_of, unknown_item_message
 
 __all__ = ["ProofFile", "load_proof_file", "load_proof_module", "catalogue", "find_items", "LOAD_LIMIT_SECONDS",
            "PROOFS_PACKAGE"]
 
-#: default time limit for loading (importing) one proof file, in seconds
-LOAD_LIMIT_SECONDS = 60.0
-
-
-#: the package holding the catalogue's proofs, one subpackage per paper
-PROOFS_PACKAGE = "lkverify.proofs"
+# LOAD_LIMIT_SECONDS (the default time limit for loading one proof file) is lkverify.options', PROOFS_PACKAGE the
+# index's, both re-exported here; this module imports SymPy and the items only where it checks a loaded file, so
+# that an unknown name is refused (from the index) without them
 
 
 @dataclasses.dataclass(frozen=True)
@@ -198,6 +193,8 @@ def _catalogue_module_name(path: Path) -> str | None:
 
 def _catalogue_items() -> set:
     """The ids of the items of every catalogue module imported so far (a user file may import them)."""
+    from .items import Item
+
     prefix = PROOFS_PACKAGE + "."
     return {id(v) for name, mod in list(sys.modules.items()) if name.startswith(prefix) and mod is not None
             for v in vars(mod).values() if isinstance(v, Item)}
@@ -205,6 +202,8 @@ def _catalogue_items() -> set:
 
 def _proof_file(module, path: Path, default_paper: str, *, foreign=frozenset()) -> ProofFile:
     """The items of a loaded module (its own, not the ``foreign`` ones), checked."""
+    from .items import Item
+
     paper = getattr(module, "PAPER", default_paper)
     items: dict = {}
     where: dict = {}
@@ -278,6 +277,7 @@ def _guarded(load, where, load_limit: float | None) -> None:
 def _inconsistency(item) -> str | None:
     """Why a theorem cannot be checked as declared (states or symbols its system lacks), else None."""
     import sympy
+    from sympy.core.function import AppliedUndef
 
     from ..declare.symbols import t as t_sym
 
@@ -326,6 +326,7 @@ def _inconsistency(item) -> str | None:
 def _foreign_states(what: str, functional, system) -> str | None:
     """Why ``functional`` uses a state function that ``system`` does not have, else None."""
     import sympy
+    from sympy.core.function import AppliedUndef
 
     if functional is None or system is None or not hasattr(system, "state_functions"):
         return None
@@ -368,6 +369,9 @@ def catalogue(*, load_limit: float | None = LOAD_LIMIT_SECONDS) -> list[ProofFil
 def find_items(spec: str, *, load_limit: float | None = LOAD_LIMIT_SECONDS) -> list[Item]:
     """Items named by ``spec``: ``paper.item``, ``paper`` (all its items), a path, or ``path.py::item``.
 
+    A catalogue name is looked up in the catalogue's index (:mod:`.index`) first: an unknown one is
+    refused without importing any proof, a known one imports only its paper's package.
+
     Raises
     ------
     InputError
@@ -405,13 +409,26 @@ def find_items(spec: str, *, load_limit: float | None = LOAD_LIMIT_SECONDS) -> l
                 raise InputError(f"{spec}: no item {item_part!r} in {path_part}; it has {', '.join(pf.items)}")
             return [pf.items[item_part]]
         return list(pf.items.values())
-    files = catalogue(load_limit=load_limit)
-    names = {f"{pf.paper}.{n}": it for pf in files for n, it in pf.items.items()}
-    if spec in names:
-        return [names[spec]]
+    package = package_of(spec)  # the index: an unknown name is refused without importing any proof
+    if package is None:
+        raise InputError(unknown_item_message(spec))
+    found = _named(spec, [load_proof_module(package, load_limit=load_limit)])
+    if found is None:  # a stale index (the item moved or was renamed): the whole catalogue decides
+        files = catalogue(load_limit=load_limit)
+        found = _named(spec, files)
+    if found is None:
+        names = [f"{pf.paper}.{n}" for pf in files for n in pf.items] + [pf.paper for pf in files]
+        close = difflib.get_close_matches(spec, names, n=3, cutoff=0.5)
+        hint = f"; did you mean {', '.join(close)}?" if close else "; see `lkverify list`"
+        raise InputError(f"{spec}: unknown item{hint}")
+    return found
+
+
+def _named(spec: str, files) -> list | None:
+    """The items of ``files`` that ``spec`` names (``paper.item`` or ``paper``), else None."""
     for pf in files:
         if spec == pf.paper:
             return list(pf.items.values())
-    close = difflib.get_close_matches(spec, list(names) + [pf.paper for pf in files], n=3, cutoff=0.5)
-    hint = f"; did you mean {', '.join(close)}?" if close else "; see `lkverify list`"
-    raise InputError(f"{spec}: unknown item{hint}")
+        if spec.startswith(pf.paper + ".") and spec[len(pf.paper) + 1:] in pf.items:
+            return [pf.items[spec[len(pf.paper) + 1:]]]
+    return None

@@ -8,13 +8,29 @@ margins (exact, :mod:`.plan`), the linearisation's spectral abscissa (estimated)
 a box on which the theorems' chains are run (:mod:`.prove`), the map's proved layer.
 """
 
-from .engine import DEFAULT_CHUNK_SIZE, SweepOptions, SweepResult, sweep
-from .evaluate import CLASSES, Simulation, classify, run_chunk
-from .grid import Axis, Grid, MAX_POINTS
-from .figure import plot_map
-from .marks import Mark, paper_marks
-from .plan import Plan, build_plan, load_example
+import importlib
 
 __all__ = ["Axis", "CLASSES", "DEFAULT_CHUNK_SIZE", "Grid", "MAX_POINTS", "Mark", "Plan", "Simulation", "SweepOptions",
            "SweepResult", "build_plan", "classify", "load_example", "paper_marks", "plot_map",
            "run_chunk", "sweep"]
+
+#: public name → the submodule that defines it, imported on first use (PEP 562): the command line reads
+#: :mod:`.cli`'s help without importing NumPy, Dask or the simulator
+_SOURCES = {"DEFAULT_CHUNK_SIZE": ".engine", "SweepOptions": ".engine", "SweepResult": ".engine", "sweep": ".engine",
+            "CLASSES": ".evaluate", "Simulation": ".evaluate", "classify": ".evaluate", "run_chunk": ".evaluate",
+            "Axis": ".grid", "Grid": ".grid", "MAX_POINTS": ".grid", "plot_map": ".figure", "Mark": ".marks",
+            "paper_marks": ".marks", "Plan": ".plan", "build_plan": ".plan", "load_example": ".plan"}
+
+
+def __getattr__(name: str):
+    """The public name ``name``, imported from its submodule on first use and kept."""
+    source = _SOURCES.get(name)
+    if source is None:
+        raise AttributeError(f"module 'lkverify.sweep' has no attribute {name!r}")
+    value = getattr(importlib.import_module(source, __name__), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(__all__))
