@@ -35,7 +35,7 @@ _SOURCES = {
     "Check": ".catalogue.items", "Item": ".catalogue.items", "Link": ".catalogue.items",
     "Theorem": ".catalogue.items",
     "Hypothesis": ".certify.hypotheses", "MatrixHypothesis": ".certify.hypotheses",
-    "BoundClaim": ".certify.steps", "QuadraticForms": ".certify.steps",
+    "Auto": ".certify.steps", "BoundClaim": ".certify.steps", "QuadraticForms": ".certify.steps",
     "Functional": ".declare.functional", "memory_integral": ".declare.functional",
     "tail_integral": ".declare.functional", "window_integral": ".declare.functional",
     "ParameterKind": ".declare.parameters", "Parameters": ".declare.parameters",
@@ -75,7 +75,7 @@ _SOURCES = {
 }
 
 __all__ = [
-    "Accuracy", "Block", "BoundClaim", "Budget", "QuadraticForms", "BudgetExceeded", "Check", "Deadline", "DerivativeClaim", "DerivativeResult",
+    "Accuracy", "Auto", "Block", "BoundClaim", "Budget", "QuadraticForms", "BudgetExceeded", "Check", "Deadline", "DerivativeClaim", "DerivativeResult",
     "Equation", "Frame", "Functional", "Hypothesis", "IdentityClaim", "IdentityResult", "InputError", "Item",
     "Kind", "Link", "LkverifyError", "MatrixHypothesis", "ParameterKind", "ParameterSpec", "Parameters", "Report",
     "Result", "Status", "System", "Term", "TermDifference", "Theorem", "UnitVector", "UnsupportedInput",

@@ -8,7 +8,8 @@
 ``lkverify linear --set A=[[…]] [--set Ad=[[…]]] [--set D=[[…]]] [--orders 0,1,2] [--h-max H] [--h H] [--plot F.png] [--json]``
 
 Exit codes: 0 every result holds (for the bare report: the report was produced),
-1 something failed or is undecided (a budget ran out), 2 bad input (one line on
+1 something failed or is undecided (a budget ran out) or a theorem is not established
+(a missing link), 2 bad input (one line on
 stderr), 3 an internal error of lkverify (one line on stderr; set the environment
 variable ``LKVERIFY_TRACEBACK=1`` to see the traceback), 130 interrupted (Ctrl-C).
 Bad input is refused before any computing: values, output paths (``--plot``),
@@ -35,12 +36,12 @@ import sys
 import time
 from pathlib import Path
 
+# light imports only: ``--help``, ``--version``, ``list`` and an unknown name load no SymPy, no NumPy (the
+# subcommands import what they compute with, and a subcommand's arguments are added on first use: _Parser.fill)
 from ._version import __version__
-from .options import MAX_BUDGET_SECONDS, BudgetExceeded
-from .catalogue.loader import LOAD_LIMIT_SECONDS, catalogue, find_items
+from .options import LOAD_LIMIT_SECONDS, MAX_BUDGET_SECONDS, BudgetExceeded
+from .catalogue.loader import catalogue, find_items  # light: proofs are imported on first use
 from .errors import InputError, UnsupportedInput
-from .declare.parse import parse_assignment, parse_value
-from .declare.symbols import t as _t, zeta as _zeta
 
 #: exit code of an unexpected exception (a bug in lkverify); see the module docstring
 EXIT_INTERNAL = 3
@@ -49,8 +50,29 @@ __all__ = ["main"]
 
 
 class _Parser(argparse.ArgumentParser):
+    #: ``fill(parser)`` adds a subcommand's arguments on first use (parsing it, or its help): those whose help or
+    #: choices come from the simulator or Dask are not imported for ``--help``, ``list`` or ``check``
+    fill = None
+
     def error(self, message):  # one line, exit code 2, no traceback
         self.exit(2, f"lkverify: error: {message} (see `lkverify --help`)\n")
+
+    def filled(self) -> None:
+        fill, self.fill = self.fill, None
+        if fill is not None:
+            fill(self)
+
+    def parse_known_args(self, args=None, namespace=None):
+        self.filled()
+        return super().parse_known_args(args, namespace)
+
+    def format_help(self):
+        self.filled()
+        return super().format_help()
+
+    def format_usage(self):
+        self.filled()
+        return super().format_usage()
 
 
 def _seconds(text: str) -> float:
@@ -74,11 +96,13 @@ def _add_load_limit(p) -> None:
                         f"(default {LOAD_LIMIT_SECONDS:g})")
 
 
-def _build_parser() -> argparse.ArgumentParser:
+def _build_parser(*, lazy: bool = False) -> argparse.ArgumentParser:
+    """The parser; ``lazy``: the subcommands' arguments that need heavy imports are added on first use."""
     p = _Parser(prog="lkverify", description="Check Lyapunov–Krasovskii stability proofs. "
                 "With no command: the report of every catalogued item at the papers' defaults.")
     sub = p.add_subparsers(dest="command", parser_class=_Parser)
     p.add_argument("--quiet", action="store_true", default=False, help=QUIET_HELP)
+    p.add_argument("--verbose", action="store_true", default=False, help=VERBOSE_HELP)
     p.add_argument("--version", action="version", version=f"lkverify {__version__}",
                    help="print lkverify's version (from the installed package's metadata) and exit")
     lp = sub.add_parser("list", help="list the catalogue: name, kind (theorem, check, example) and title")
@@ -92,13 +116,18 @@ def _build_parser() -> argparse.ArgumentParser:
                     help="items run in N worker processes at once (default: the number of CPUs, at most 4; "
                          "1: one after the other); the output order is the catalogue's")
     _add_quiet(rp)
+    _add_verbose(rp)
     _add_check(sub)
     _add_simulate(sub)
     _add_constants(sub)
     _add_linear(sub)
-    from .sweep.cli import add_parser as _add_sweep
+    from .sweep import cli as sweep_cli  # light: the sweep's modules are imported when it runs
 
-    _add_sweep(sub, quiet=_add_quiet, seconds=_seconds, json_help=JSON_HELP)
+    sub.add_parser("sweep", help=sweep_cli.HELP).fill = lambda sp: sweep_cli.add_arguments(
+        sp, quiet=_add_quiet, seconds=_seconds, json_help=JSON_HELP)
+    if not lazy:
+        for sp in dict.fromkeys(sub.choices.values()):
+            sp.filled()
     return p
 
 
@@ -115,6 +144,7 @@ def _add_check(sub) -> None:
                    help="the work limit of a --box run: pieces of the subdivision checked (default 16)")
     c.add_argument("--json", action="store_true", help=JSON_HELP)
     _add_quiet(c)
+    _add_verbose(c)
     c.add_argument("--budget", type=_seconds, default=None, metavar="SECONDS",
                    help="your own time cap of the whole check; what it cuts is undecided (default: none -- the check "
                         "stops at its deterministic work limits, so its verdict is the same on any machine; at most 1e6)")
@@ -122,13 +152,17 @@ def _add_check(sub) -> None:
 
 
 def _add_simulate(sub) -> None:
-    """``lkverify simulate``: a numerical example."""
+    """``lkverify simulate``: a numerical example (its arguments added on first use: they import the simulator)."""
+    sub.add_parser("simulate", help="integrate a numerical example and check the paper's claims about it").fill = \
+        _simulate_arguments
+
+
+def _simulate_arguments(s) -> None:
     from .catalogue.examples import DEFAULT_SIMULATE_BUDGET, MAX_STEPS
     from .simulate.figures import DISTANCES
     from .simulate.rigidbody import CONVENTIONS, DEFAULT_CONVENTION
     from .simulate.solver import FLOOR_WINDOW
 
-    s = sub.add_parser("simulate", help="integrate a numerical example and check the paper's claims about it")
     s.add_argument("item", help="an example (aleksandrov2023.fig6), or path/to/file.py[::item]")
     s.add_argument("--set", dest="sets", action="append", default=[], metavar="NAME=VALUE",
                    help="a parameter value for every run of the example")
@@ -150,6 +184,7 @@ def _add_simulate(sub) -> None:
                    help="distance of the convergence claims and of the times to 1e-2 and 1e-3: "
                         + "; ".join(f"{k} = {v}" for k, v in DISTANCES.items()) + " (default combined; for the examples that name their distances)")
     _add_quiet(s)
+    _add_verbose(s)
     s.add_argument("--budget", type=_seconds, default=DEFAULT_SIMULATE_BUDGET, metavar="SECONDS",
                    help=f"time budget for all runs together; a run cut short is undecided (default "
                         f"{DEFAULT_SIMULATE_BUDGET:g}). Steps are at most min(delays) long, so a run needs at least "
@@ -168,6 +203,7 @@ def _add_constants(sub) -> None:
                         "e.g. --set eps=0.9 for aleksandrov2017.lemma1")
     k.add_argument("--json", action="store_true", help=JSON_HELP)
     _add_quiet(k)
+    _add_verbose(k)
     k.add_argument("--plot", metavar="FILE.png",
                    help="write the figure (envelope, or δ(ε) for a lemma): PNG, or PDF/SVG by the suffix")
     k.add_argument("--budget", type=_seconds, default=150.0, metavar="SECONDS",
@@ -211,6 +247,14 @@ def _add_quiet(p) -> None:
     p.add_argument("--quiet", action="store_true", default=argparse.SUPPRESS, help=QUIET_HELP)
 
 
+VERBOSE_HELP = ("the text report in full: table cells and detail lines are not cut at three lines (every line "
+                "still wraps at 100 columns); --json has everything too")
+
+
+def _add_verbose(p) -> None:
+    p.add_argument("--verbose", action="store_true", default=argparse.SUPPRESS, help=VERBOSE_HELP)
+
+
 def _progress(enabled: bool):
     """``say(msg, force=False)``: a progress line on stderr, after the grace period, throttled."""
     start = time.monotonic()
@@ -233,7 +277,7 @@ def _progress(enabled: bool):
 def main(argv=None) -> int:
     """Run the command line; returns the exit code (see the module docstring)."""
     try:
-        args = _build_parser().parse_args(argv)
+        args = _build_parser(lazy=True).parse_args(argv)
         if not hasattr(args, "quiet"):
             args.quiet = False
     except SystemExit as exc:  # argparse: --help (0) or a usage error (2, one line already printed)
@@ -282,18 +326,28 @@ def _one_line(exc) -> str:
 
 
 def _dispatch(args) -> int:
-    if args.command == "list":
-        rows = [(f"{pf.paper}.{name}", {"Example": "example", "Check": "check"}.get(type(item).__name__, "theorem"),
-                 item.title) for pf in catalogue() for name, item in pf.items.items()]
+    if args.command == "list":  # from the index: no proof imported
+        from .catalogue.index import read_index
+
+        from .report.schema import SCHEMA_ID
+        from .report.text import REPORT_WIDTH, wrap_lines
+
+        rows = [(row.item, row.kind, row.title) for row in read_index()]
         if getattr(args, "json", False):
-            print(json.dumps([{"item": q, "kind": k, "title": t} for q, k, t in rows], indent=2, ensure_ascii=False))
+            print(json.dumps({"schema": SCHEMA_ID, "items": [{"item": q, "kind": k, "title": t} for q, k, t in rows]},
+                             indent=2, ensure_ascii=False))
             return 0
         width = max((len(r[0]) for r in rows), default=0)
-        for qualified, kind, title in rows:
-            print(f"{qualified:<{width}} {kind:<8} {title}")
+        for qualified, kind, title in rows:  # the title wraps under itself: every line fits 100 columns
+            head = f"{qualified:<{width}} {kind:<8} "
+            lines = wrap_lines(title, max(REPORT_WIDTH - len(head), 30), limit=None)
+            print(head + lines[0])
+            for line in lines[1:]:
+                print(" " * len(head) + line)
         return 0
     if args.command in (None, "report"):
-        return _report(json_out=getattr(args, "json", False), quiet=args.quiet, jobs=getattr(args, "jobs", None))
+        return _report(json_out=getattr(args, "json", False), quiet=args.quiet, jobs=getattr(args, "jobs", None),
+                       verbose=args.verbose)
     if args.command == "check":
         box = _box(args)
         values = _set_values(args.sets, box.names if box is not None else ())
@@ -312,7 +366,7 @@ def _dispatch(args) -> int:
             if args.max_boxes is not None:
                 raise InputError("--max-boxes: only with --box NAME=LO:HI")
             reports = [item.run(values, budget=args.budget, progress=say) for item in items]
-        return _emit(reports, json_out=args.json)
+        return _emit(reports, json_out=args.json, verbose=args.verbose)
     if args.command == "simulate":
         return _simulate(args)
     if args.command == "constants":
@@ -349,18 +403,25 @@ def _linear(args) -> int:
 
 def _box(args):
     """The ``--box`` intervals as a ParameterBox (None without any); ``--max-boxes`` checked."""
-    from .declare.boxes import parse_boxes
-
     if args.max_boxes is not None and args.max_boxes < 1:
         raise InputError(f"--max-boxes: expected a positive number of pieces, got {args.max_boxes}")
-    return parse_boxes(args.boxes) if args.boxes else None
+    if not args.boxes:
+        return None
+    from .declare.boxes import parse_boxes
+
+    return parse_boxes(args.boxes)
 
 
 def _set_values(sets, box_names=()) -> dict:
     """``--set NAME=VALUE`` arguments parsed (the messages name ``--set``); admissibility is the item's.
 
     The names of ``--box`` intervals may appear in the values (``--set "F=diag(h,h,h)" --box h=1/2:1``)."""
+    if not sets:
+        return {}
     import sympy
+
+    from .declare.parse import parse_assignment, parse_value
+    from .declare.symbols import t as _t, zeta as _zeta
 
     variables = {"t": _t, "zeta": _zeta, **{n: sympy.Symbol(n) for n in box_names}}
     values = {}
@@ -388,7 +449,7 @@ def check_output_path(path: str, *, option: str = "--plot") -> Path:
     return check_writable_file(path, option=option, suffixes=FIGURE_SUFFIXES, note=" (the format follows the suffix)")
 
 
-def _emit(reports, *, json_out: bool) -> int:
+def _emit(reports, *, json_out: bool, verbose: bool = False) -> int:
     """Print reports (one JSON object, a list of them, or text tables); the worst exit code."""
     if json_out:
         versions = _versions(PROOF_LIBRARIES)
@@ -396,7 +457,7 @@ def _emit(reports, *, json_out: bool) -> int:
         out = objs[0] if len(objs) == 1 else objs
         print(json.dumps(out, indent=2, ensure_ascii=False))
     else:
-        print("\n\n".join(r.as_text() for r in reports))
+        print("\n\n".join(r.as_text(verbose=verbose) for r in reports))
     return max(_exit_code(r) for r in reports)
 
 
@@ -407,31 +468,16 @@ def _exit_code(report) -> int:
 
 
 def _bar(enabled: bool, label: str, say=None):
-    """The fraction of a run done: a bar on a terminal, else a throttled line every 10 % through ``say``."""
-    last = [-1]
+    """The fraction of a run done: a bar on a terminal (``enabled``), else a line every 10 % through ``say``."""
+    from .report.progress import Progress
 
-    def update(fraction: float):
-        if not enabled:
-            if say is not None:
-                tenth = int(10 * min(max(fraction, 0.0), 1.0))
-                if tenth != last[0]:
-                    last[0] = tenth
-                    say(f"  {label}: {10 * tenth}% of the run")
-            return
-        k = int(40 * min(max(fraction, 0.0), 1.0))
-        if k != last[0]:
-            last[0] = k
-            end = "\n" if k == 40 else ""
-            print(f"\r  {label[:40]:40s} [{'#' * k}{'.' * (40 - k)}] {100 * fraction:5.1f}%", end=end,
-                  file=sys.stderr, flush=True)
-
-    return update
+    return Progress(label, enabled=enabled or say is not None, say=say, tty=enabled).fraction
 
 
 def _simulate(args) -> int:
     from .options import Deadline
     from .catalogue.examples import Example
-    from .declare.parse import parse_value
+    from .declare.parse import parse_assignment, parse_value
     from .declare.symbols import t as t_sym
     from .simulate.figures import convention_name
 
@@ -484,7 +530,10 @@ def _simulate(args) -> int:
     else:
         blocks = []
         for ex, report, written in reports:
-            lines = [report.as_text()] + ["  " + line for line in _setup_lines(ex, args, histories)]
+            from .report.text import wrap_block
+
+            setup = "\n".join(_setup_lines(ex, args, histories))
+            lines = [report.as_text(verbose=args.verbose)] + wrap_block(setup, indent="  ", limit=None)
             lines += [f"figure: {w}" for w in written]
             blocks.append("\n".join(lines))
         print("\n\n".join(blocks))
@@ -632,7 +681,7 @@ def _constants(args) -> int:
                 print(f"figure: {args.plot}")
         elif args.plot and not args.json:
             print(f"figure: not written ({report.verdict})")
-    return _emit(reports, json_out=args.json)
+    return _emit(reports, json_out=args.json, verbose=args.verbose)
 
 
 #: a constants job that does not stop by itself at its budget is interrupted this much later
@@ -661,15 +710,15 @@ def _constants_within_budget(item, values, args, say):
 _REPORT_ITEMS: dict = {}  # qualified name → item; a worker process fills its own on first use
 
 
-def _report_one(name: str):
+def _report_one(name: str, verbose: bool = False):
     """Run one item at its defaults (in a worker): (text, JSON, holds) — plain data, picklable."""
     if not _REPORT_ITEMS:  # a fresh worker (forkserver / spawn): load the catalogue once per process
         _REPORT_ITEMS.update({item.qualified_name: item for pf in catalogue() for item in pf.items.values()})
     rep = _REPORT_ITEMS[name].run({})
-    return rep.as_text(), rep.to_json(), rep.holds
+    return rep.as_text(verbose=verbose), rep.to_json(), rep.holds
 
 
-def _report(*, json_out: bool, quiet: bool = False, jobs: int | None = None) -> int:
+def _report(*, json_out: bool, quiet: bool = False, jobs: int | None = None, verbose: bool = False) -> int:
     if jobs is not None and jobs < 1:
         raise InputError(f"--jobs: expected a positive number of worker processes, got {jobs}; e.g. --jobs 2")
     say = _progress(not quiet)
@@ -693,10 +742,15 @@ def _report(*, json_out: bool, quiet: bool = False, jobs: int | None = None) -> 
         method = "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() else "spawn"
         context = multiprocessing.get_context(method)
         if method == "forkserver":
-            context.set_forkserver_preload(["lkverify.cli"])  # the server imports lkverify once for all workers
+            # the server imports the proofs (and so the lkverify they use) once for all workers: lkverify.cli
+            # alone imports no proof and no SymPy
+            from .catalogue.index import PROOFS_PACKAGE, read_index
+
+            packages = sorted({f"{PROOFS_PACKAGE}.{row.package}" for row in read_index()})
+            context.set_forkserver_preload(["lkverify.cli", *packages])
         say(f"{len(names)} items in {jobs} worker processes", force=True)
         with ProcessPoolExecutor(jobs, mp_context=context) as pool:
-            submitted = {n: pool.submit(_report_one, n) for n in start_order}
+            submitted = {n: pool.submit(_report_one, n, verbose) for n in start_order}
             futures = [submitted[n] for n in names]
             outputs = []
             for k, (n, fut) in enumerate(zip(names, futures)):
@@ -707,7 +761,7 @@ def _report(*, json_out: bool, quiet: bool = False, jobs: int | None = None) -> 
         for k, item in enumerate(todo):
             say(f"item {k + 1}/{len(todo)}: {item.qualified_name}", force=True)
             rep = item.run({}, progress=say)
-            outputs.append((rep.as_text(), rep.to_json(), rep.holds))
+            outputs.append((rep.as_text(verbose=verbose), rep.to_json(), rep.holds))
     say(f"{len(todo)} items done", force=True)
     if json_out:
         versions = _versions(PROOF_LIBRARIES)
@@ -717,7 +771,7 @@ def _report(*, json_out: bool, quiet: bool = False, jobs: int | None = None) -> 
         print("\n\n".join(text for text, _, _ in outputs))
         held = sum(h for _, _, h in outputs)
         print(f"\n{len(outputs)} items: {held} with every result holding, {len(outputs) - held} with a failed "
-              f"or undecided result (a failed identity against a printed formula is a finding about the paper)")
+              f"or undecided result\n(a failed identity against a printed formula is a finding about the paper)")
     return 0
 
 

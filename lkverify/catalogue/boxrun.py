@@ -52,6 +52,8 @@ from ..declare.boxes import ParameterBox
 from ..declare.parameters import ParameterKind, ResolvedValues, apply_substitution
 from ..errors import InputError, UnsupportedInput
 from ..report.results import Report, Result
+from ..report.schema import SCHEMA_ID
+from ..report.text import MAX_LINES, REPORT_WIDTH, wrap_block
 from ..status import Label, Status
 from .links import Link, theorem_verdict
 from .statements import _capped, _cut_text, _not_exact_if_floats, _symbols_of
@@ -222,30 +224,40 @@ class BoxReport:
         return self.pieces[0].report.results if self.pieces and self.pieces[0].report else ()
 
     def to_json(self) -> dict:
-        return {"item": self.item, "parameters": dict(self.parameters), "box": self.box.to_json(),
+        return {"schema": SCHEMA_ID, "item": self.item, "parameters": dict(self.parameters), "box": self.box.to_json(),
                 "status": self.status.value, "verdict": self.verdict, "proved_fraction": str(self.proved_fraction),
                 "checked": self.checked, "max_boxes": self.max_boxes,
                 "pieces": [p.to_json() for p in self.pieces],
                 "failing": [f.to_json() for f in self.failing],
                 "first": None if not self.pieces or self.pieces[0].report is None else self.pieces[0].report.to_json()}
 
-    def as_text(self) -> str:
-        lines = [f"{self.item} over the box {self.box}"]
+    def _repr_html_(self) -> str:
+        from ..report.html import box_html
+
+        return box_html(self)
+
+    def as_text(self, *, verbose: bool = False, width: int = REPORT_WIDTH) -> str:
+        """The pieces, failing points and one piece's chain; lines at most ``width`` wide (as
+        :meth:`Report.as_text <lkverify.report.results.Report.as_text>`)."""
+        lines = wrap_block(f"{self.item} over the box {self.box}", width, limit=None)
         if self.parameters:
-            lines.append("  parameters: " + ", ".join(f"{k}={v}" for k, v in self.parameters.items()))
-        lines.append(f"  pieces: {len(self.pieces)} (checked {self.checked}, limit {self.max_boxes}); proved "
-                     f"{len(self.proved)}, {float(self.proved_fraction):.1%} of the box")
+            shown = ", ".join(f"{k}={v}" for k, v in self.parameters.items())
+            lines += wrap_block("parameters: " + shown, width, indent="  ", limit=None)
+        lines += wrap_block(f"pieces: {len(self.pieces)} (checked {self.checked}, limit {self.max_boxes}); proved "
+                            f"{len(self.proved)}, {float(self.proved_fraction):.1%} of the box", width, indent="  ")
         for p in self.pieces:
-            lines.append(f"    {p.status.value:<11}  {p.box}")
+            lines += wrap_block(f"{p.status.value:<11}  {p.box}", width, indent="    ", hang=13, limit=None)
+        limit = None if verbose else MAX_LINES
         for f in self.failing:
-            lines.append(f"  failing point: {', '.join(f'{k} = {v}' for k, v in f.point.items())}: {f.link}: {f.detail}")
+            lines += wrap_block(f"failing point: {', '.join(f'{k} = {v}' for k, v in f.point.items())}: {f.link}: "
+                                f"{f.detail}", width, indent="  ", limit=limit)
         show = next((p for p in self.pieces if p.status is not BoxStatus.ESTABLISHED and p.report is not None),
                     self.pieces[0] if self.pieces else None)
         if show is not None and show.report is not None:
             lines.append("")
-            lines.append(f"  the chain on {show.box}:")
-            lines.extend("  " + line for line in show.report.as_text().splitlines()[1:])
-        lines.append(f"  verdict: {self.verdict}")
+            lines += wrap_block(f"the chain on {show.box}:", width, indent="  ", limit=None)
+            lines.extend("  " + line for line in show.report.as_text(verbose=verbose, width=width - 2).splitlines()[1:])
+        lines += wrap_block(f"verdict: {self.verdict}", width, indent="  ", limit=None)
         return "\n".join(lines)
 
 
@@ -314,6 +326,8 @@ def _admissible_over_box(P, values: Mapping, box: ParameterBox) -> None:
                 if not holds:
                     raise InputError(f"{name} = {v}: expected {name} {'>' if need[spec.kind] else '≥'} 0 at every "
                                      f"point of the box {box}; {detail}")
+            continue
+        if spec.kind is ParameterKind.MATRIX:  # any real entries: nothing to hold over the box
             continue
         if spec.kind not in (ParameterKind.SPD_MATRIX, ParameterKind.DIAGONAL):
             raise InputError(f"{name} = {v}: a {spec.kind.value} written in box variables is not supported; fix it")

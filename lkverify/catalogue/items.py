@@ -32,6 +32,7 @@ from ..declare.parameters import Parameters
 from ..report.results import Report, Result
 from ..status import Status
 from ..declare.system import System
+from ..memo import Memo
 from .links import Link, _best_step, _combined, _concluded, theorem_verdict
 from .statements import _capped, _cut_text, _not_exact_if_floats, _symbols_of
 
@@ -588,7 +589,7 @@ def _check_claim(claim, P, given, sub_given, deadline):
     return claim.check(sub_given, values=given, budget=_left(deadline))
 
 
-_CLAIM_CACHE: dict = {}  # (claim, the values it was checked at) → a decided result: one proof per process
+_CLAIM_CACHE = Memo(1024)  # (claim, the values it was checked at) → a decided result: one proof per process
 
 
 def _cached_check(claim, values: Mapping, check):

@@ -531,7 +531,9 @@ def _plot_envelopes(extra: dict, path, *, values=None, simulate_fn=None) -> None
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    from ..report.files import save_figure
+
+    save_figure(fig, path, dpi=120)
 
 
 #: the quantity each envelope bounds (by the envelope's constant name), in mathtext

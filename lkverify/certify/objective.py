@@ -23,6 +23,7 @@ from .functions import compile_arb, lambdify_real
 from .intervals import compile_program
 from .intervals.balls import _JUMPS
 from .intervals.convert import _real_dummies
+from ..memo import Memo
 from .regions import Region
 
 __all__ = ["Objective", "TAYLOR2_MAX_DIMENSION", "TAYLOR3_MAX_DIMENSION", "TAYLOR_CACHE_SIZE", "TaylorPrograms"]
@@ -35,7 +36,7 @@ TAYLOR3_MAX_DIMENSION = 6
 TAYLOR2_MAX_DIMENSION = 12
 #: compiled derivative programs kept for objectives seen again (the same template in two bound steps)
 TAYLOR_CACHE_SIZE = 16
-_TAYLOR_CACHE: dict = {}
+_TAYLOR_CACHE = Memo(TAYLOR_CACHE_SIZE)
 
 
 class Objective:
@@ -84,12 +85,10 @@ class Objective:
                 cache[order] = None
             else:
                 key = (self.expr, self.region.variables, tuple(self.region.signs), order, flint.ctx.prec)
-                try:
-                    cache[order] = _TAYLOR_CACHE[key]
-                except KeyError:
-                    cache[order] = _TAYLOR_CACHE[key] = TaylorPrograms.compile(self, order)
-                    while len(_TAYLOR_CACHE) > TAYLOR_CACHE_SIZE:
-                        _TAYLOR_CACHE.pop(next(iter(_TAYLOR_CACHE)))
+                hit = _TAYLOR_CACHE.get(key)
+                if hit is None:
+                    hit = _TAYLOR_CACHE[key] = TaylorPrograms.compile(self, order)
+                cache[order] = hit
         return cache[order]
 
 

@@ -51,6 +51,7 @@ class ParameterKind(Label):
     NONNEGATIVE = "nonnegative scalar"
     DELAY = "delay (positive scalar)"
     SPD_MATRIX = "symmetric positive-definite matrix"
+    MATRIX = "real matrix"
     DIAGONAL = "diagonal matrix with positive entries"
     UNIT_VECTOR = "constant unit vector"
     COEFFICIENT = "function of t"
@@ -148,6 +149,21 @@ class ParameterSpec:
                 raise InputError(f"{name}: expected a symmetric matrix, got {value.tolist()}")
             _check_positive_definite(name, value, n)
             return sympy.ImmutableMatrix(value)
+        if self.kind is ParameterKind.MATRIX:
+            rows, cols = self.shape
+            if not isinstance(value, sympy.MatrixBase):
+                example = "[" + ",".join("[" + ",".join(["0"] * cols) + "]" for _ in range(rows)) + "]"
+                raise InputError(f"{name}: expected a {rows}x{cols} matrix such as {example}, got {value}")
+            if value.shape != (rows, cols):
+                raise InputError(f"{name}: expected a {rows}x{cols} matrix, got a {value.shape[0]}x{value.shape[1]} "
+                                 f"one")
+            if any(e.free_symbols for e in value):
+                raise InputError(f"{name}: expected numeric entries, got {value.tolist()}")
+            if any(e.has(sympy.nan, sympy.zoo, sympy.oo, -sympy.oo) for e in value):
+                raise InputError(f"{name}: expected finite entries, got {value.tolist()}")
+            if not all(e.is_real for e in value):
+                raise InputError(f"{name}: expected real entries, got {value.tolist()}")
+            return sympy.ImmutableMatrix(value)
         if self.kind is ParameterKind.UNIT_VECTOR:
             n = self.shape[0]
             if not isinstance(value, sympy.MatrixBase) or value.shape not in ((n, 1), (1, n)):
@@ -178,7 +194,8 @@ class ParameterSpec:
         """The replacement of this parameter's atoms by ``value`` (already checked)."""
         if self.kind in _SCALAR_KINDS:
             return {self.obj: value}
-        if self.kind in (ParameterKind.SPD_MATRIX, ParameterKind.DIAGONAL, ParameterKind.UNIT_VECTOR):
+        if self.kind in (ParameterKind.SPD_MATRIX, ParameterKind.DIAGONAL, ParameterKind.UNIT_VECTOR,
+                         ParameterKind.MATRIX):
             return {s: v for s, v in zip(self.obj, value) if isinstance(s, sympy.Symbol)}
         # functions: replace f(arg) by value(arg)
         var = _t if self.kind is ParameterKind.COEFFICIENT else _zeta
@@ -202,6 +219,8 @@ class ParameterSpec:
             n = self.shape[0]
             m = sympy.Matrix(n, n, lambda i, j: rat(-1, 1))
             return sympy.ImmutableMatrix(m * m.T + sympy.eye(n))
+        if self.kind is ParameterKind.MATRIX:
+            return sympy.ImmutableMatrix(*self.shape, lambda i, j: rat(-2, 2))
         if self.kind is ParameterKind.UNIT_VECTOR:
             v = rng.normal(size=self.shape[0])
             v = [sympy.Rational(int(round(x * 16)), 16) for x in v]
@@ -292,6 +311,39 @@ class Parameters:
         m = SymmetricMatrix(n, n, lambda i, j: entry(i, j))
         return self._add(ParameterSpec(name, ParameterKind.SPD_MATRIX, m, tuple(syms.values()), default,
                                        latex or name, description, (n, n)))
+
+    def matrix(self, name: str, rows: int, cols: int | None = None, *, default=None, latex: str | None = None,
+               description: str = "") -> sympy.ImmutableMatrix:
+        """A constant real ``rows × cols`` matrix (square by default) with entries ``name_ij``, e.g. A of ẋ = Ax.
+
+        Any real entries are admissible (no symmetry, no sign); ``--set "A=[[0,1],[-2,-3]]"`` sets it.
+
+        Examples
+        --------
+        >>> P = Parameters()
+        >>> A = P.matrix("A", 2, default=[[0, 1], [-2, -3]])
+        >>> A
+        Matrix([
+        [A_11, A_12],
+        [A_21, A_22]])
+        >>> P.resolve({})["A"]
+        Matrix([
+        [ 0,  1],
+        [-2, -3]])
+        >>> P["A"].check(sympy.Matrix([[1, 2, 3]]))
+        Traceback (most recent call last):
+        ...
+        lkverify.errors.InputError: A: expected a 2x2 matrix, got a 1x3 one
+        """
+        cols = rows if cols is None else cols
+        if not (isinstance(rows, int) and isinstance(cols, int) and rows > 0 and cols > 0):
+            raise InputError(f"{name}: expected positive integer dimensions, got {rows}x{cols}")
+        syms = [[sympy.Symbol(f"{name}_{i + 1}{j + 1}", real=True) for j in range(cols)] for i in range(rows)]
+        m = sympy.ImmutableMatrix(syms)
+        if default is not None and not isinstance(default, sympy.MatrixBase):
+            default = sympy.ImmutableMatrix(default) if isinstance(default, (list, tuple)) else default
+        return self._add(ParameterSpec(name, ParameterKind.MATRIX, m, tuple(m), default, latex or name, description,
+                                       (rows, cols)))
 
     def diagonal_matrix(self, name: str, entries: Sequence[str], *, default=None, latex: str | None = None,
                         description: str = "") -> sympy.ImmutableMatrix:

@@ -57,7 +57,9 @@ def plot_linear(system, path, *, intervals, h=None, certified=(), points: int = 
     h_show = h if h is not None else (intervals.margin if intervals.margin is not None else
                                       (intervals.intervals[0][1] if intervals.intervals else intervals.h_max / 2))
     sp = rightmost_roots(system, h_show)
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.3))
+    zoom = intervals.margin is not None
+    fig, axes = plt.subplots(1, 3 if zoom else 2, figsize=(16 if zoom else 11, 4.3))
+    ax1, ax2 = axes[0], axes[1]
     ev = sp.discretised
     ax1.plot(ev.real, ev.imag, ".", color="0.6", ms=4, label="pseudospectral eigenvalues")
     ax1.plot(sp.roots.real, sp.roots.imag, "o", mfc="none", color="C3", ms=7, label="Newton-refined roots")
@@ -87,8 +89,39 @@ def plot_linear(system, path, *, intervals, h=None, certified=(), points: int = 
     ax2.set_xlabel("delay h (dashed: crossing delays)")
     ax2.set_ylabel(r"max Re $\lambda$")
     ax2.set_title(title or "spectral abscissa and certified delays")
-    ax2.legend(loc="upper left", bbox_to_anchor=(1.02, 1), fontsize=8)
+    if zoom:
+        _zoom_panel(axes[2], system, intervals, certified)
+        ax2.legend(loc="lower right", fontsize=7)
+    else:
+        ax2.legend(loc="upper left", bbox_to_anchor=(1.02, 1), fontsize=8)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    from ..report.files import save_figure
+
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
     return str(path)
+
+
+def _zoom_panel(ax, system, intervals, certified, points: int = 41) -> None:
+    """The abscissa around the first crossing: the certified delays apart, the instability beyond visible."""
+    margin = float(intervals.margin)
+    ends = [float(v[e]) for _, v in certified for e in ("lower", "upper") if v.get(e) is not None]
+    near = [e for e in ends if 0.97 * margin <= e <= margin]   # the delays certified close to the margin
+    width = max(margin - min(near, default=margin), 0.005 * margin, 1e-4)
+    grid = np.linspace(max(margin - 1.5 * width, 1e-9), margin + 1.5 * width, points)
+    ab = np.array([rightmost_roots(system, x, count=0).abscissa for x in grid])
+    ax.plot(grid, ab, ".-", color="C0", ms=3, label=r"max Re $\lambda$ (spectral)")
+    ax.axhline(0, color="k", lw=0.8)
+    ax.axvline(margin, color="0.5", lw=0.8, ls="--", label=f"first crossing h = {margin:.6g}")
+    ax.fill_between(grid, 0, ab, where=ab > 0, color="C3", alpha=0.2, label="unstable (Re λ > 0)")
+    styles = ("-", "--", "-.", ":")
+    for k, (method, value) in enumerate(certified):
+        if value.get("upper") is not None and grid[0] <= float(value["upper"]) <= grid[-1]:
+            ax.axvline(float(value["upper"]), color=f"C{(k + 3) % 10}", lw=1.2, ls=styles[k % len(styles)],
+                       label=f"certified by {method} up to {float(value['upper']):.6g}")
+    span = float(np.max(np.abs(ab))) if len(ab) else 1.0
+    ax.set_ylim(-1.2 * span, 1.2 * span)
+    ax.set_xlabel("delay h (zoom on the crossing)")
+    ax.set_ylabel(r"max Re $\lambda$")
+    ax.set_title("around the delay margin", fontsize=10)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1), fontsize=8)

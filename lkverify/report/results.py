@@ -20,8 +20,10 @@ import sympy
 
 from ..status import Label, Status
 from ..errors import InputError
+from .schema import SCHEMA_ID
+from .text import MAX_LINES, REPORT_WIDTH, table, wrap_block
 
-__all__ = ["Kind", "Result", "Report", "jsonable"]
+__all__ = ["Kind", "Result", "Report", "jsonable", "value_json"]
 
 
 class Kind(Label):
@@ -90,6 +92,42 @@ def jsonable(value):
     return x if math.isfinite(x) else str(x)
 
 
+def _exact(value) -> dict:
+    """``exact`` and ``latex`` of an exact SymPy value (nothing for a float or a non-SymPy value)."""
+    if isinstance(value, (sympy.Basic, sympy.MatrixBase)) and not value.has(sympy.Float):
+        return {"exact": str(value), "latex": sympy.latex(value)}
+    return {}
+
+
+def value_json(value):
+    r"""A result's ``value`` in the JSON card: ``None`` or an object (one shape for every result).
+
+    A plain value becomes ``{"value": …}``; an exact SymPy value adds its exact string and
+    LaTeX (so 1/3 is not only 0.333…); a dict keeps its keys (its ``value`` gets the same
+    ``exact``/``latex`` when it is exact).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> value_json(sympy.Rational(1, 3))
+    {'value': 0.3333333333333333, 'exact': '1/3', 'latex': '\\frac{1}{3}'}
+    >>> value_json(2), value_json(None), value_json([1, 2])
+    ({'value': 2}, None, {'value': [1, 2]})
+    >>> value_json({"value": sympy.sqrt(2), "paper": 1.41})["exact"]
+    'sqrt(2)'
+    >>> value_json(sympy.Interval(1, sympy.oo))
+    {'value': 'Interval(1, oo)', 'exact': 'Interval(1, oo)', 'latex': '\\left[1, \\infty\\right)'}
+    """
+    if value is None:
+        return None
+    if isinstance(value, dict):
+        out = jsonable(value)
+        if "value" in value and "exact" not in value:
+            out.update(_exact(value["value"]))
+        return out
+    return {"value": jsonable(value), **_exact(value)}
+
+
 @dataclasses.dataclass(frozen=True)
 class Result:
     """One checked statement.
@@ -104,6 +142,9 @@ class Result:
         The number (a margin, a constant) or a structured value (term differences).
     detail : str
         One readable sentence.
+    label : str
+        A short name for the text table (a term's label, not its SymPy statement); empty:
+        the ``name``.  The full name is in ``--verbose`` and in the JSON.
 
     Examples
     --------
@@ -111,7 +152,7 @@ class Result:
     >>> from lkverify.status import Status
     >>> r = Result("bound", "margin > 0", Status.CERTIFIED, sympy.Rational(1, 3), "margin 1/3")
     >>> r.kind, r.to_json()
-    (<Kind.BOUND: 'bound'>, {'kind': 'bound', 'name': 'margin > 0', 'status': 'certified', 'value': 0.3333333333333333, 'detail': 'margin 1/3'})
+    (<Kind.BOUND: 'bound'>, {'kind': 'bound', 'name': 'margin > 0', 'status': 'certified', 'value': {'value': 0.3333333333333333, 'exact': '1/3', 'latex': '\\\\frac{1}{3}'}, 'detail': 'margin 1/3'})
     >>> Result("proof", "x", Status.EXACT)
     Traceback (most recent call last):
         ...
@@ -127,6 +168,7 @@ class Result:
     status: Status
     value: object = None
     detail: str = ""
+    label: str = ""
 
     def __post_init__(self):
         if not isinstance(self.kind, Kind):
@@ -135,10 +177,30 @@ class Result:
             object.__setattr__(self, "kind", Kind(self.kind))
         if not isinstance(self.status, Status):
             raise InputError(f"result status: expected a Status, got {self.status!r}")
+        if not isinstance(self.label, str):
+            raise InputError(f"result label: expected a string (a short name), got {self.label!r}")
 
     def to_json(self) -> dict:
         return {"kind": self.kind.value, "name": self.name, "status": self.status.value,
-                "value": jsonable(self.value), "detail": self.detail}
+                "value": value_json(self.value), "detail": self.detail}
+
+    def display_value(self) -> tuple:
+        r"""(LaTeX or None, text) of the value: LaTeX for an exact SymPy value of a readable size.
+
+        >>> import sympy
+        >>> Result("bound", "m", Status.EXACT, sympy.Rational(1, 3)).display_value()
+        ('\\frac{1}{3}', '0.333333')
+        >>> Result("bound", "m", Status.ESTIMATED, 0.25).display_value()
+        (None, '0.25')
+        """
+        js = value_json(self.value)
+        latex = js.get("latex") if js else None
+        return (latex if latex is not None and len(latex) <= 200 else None), _fmt_value(self.value)
+
+    def _repr_html_(self) -> str:
+        from .html import result_html
+
+        return result_html(self)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -187,7 +249,7 @@ class Report:
         return 0 if self.holds and not not_established else 1
 
     def to_json(self) -> dict:
-        out = {"item": self.item, "parameters": jsonable(self.parameters),
+        out = {"schema": SCHEMA_ID, "item": self.item, "parameters": jsonable(self.parameters),
                "results": [r.to_json() for r in self.results], "verdict": self.verdict}
         if self.chain:
             out["chain"] = [link.to_json() for link in self.chain]
@@ -196,21 +258,41 @@ class Report:
     def dumps(self) -> str:
         return json.dumps(self.to_json(), indent=2, ensure_ascii=False)
 
-    def as_text(self) -> str:
-        """A readable table: kind, name, status, value, detail; then details and the verdict."""
-        rows = [(str(r.kind), r.name, r.status.value, _fmt_value(r.value), r.detail) for r in self.results]
-        head = ("kind", "name", "status", "value", "detail")
-        widths = [max(len(h), *(len(row[i]) for row in rows)) if rows else len(h) for i, h in enumerate(head[:4])]
+    def _repr_html_(self) -> str:
+        """Jupyter: a table with coloured statuses, exact values in LaTeX (:mod:`lkverify.report.html`)."""
+        from .html import report_html
+
+        return report_html(self)
+
+    def _repr_latex_(self) -> str:
+        from .html import report_latex
+
+        return report_latex(self)
+
+    def __repr__(self) -> str:
+        return f"<Report {self.item}: {self.verdict[:80]}{'…' if len(self.verdict) > 80 else ''}>"
+
+    def as_text(self, *, verbose: bool = False, width: int = REPORT_WIDTH) -> str:
+        """A readable table: kind, name, status, value, detail; then details and the verdict.
+
+        Every line is at most ``width`` characters: cells wrap in their columns and, unless
+        ``verbose``, a result's short ``label`` stands for its name and a cell or a detail line
+        longer than three lines is cut with ``…``
+        (:mod:`lkverify.report.text`); the parameters and the verdict are always whole.
+        """
+        rows = [(str(r.kind), r.name if verbose or not r.label else r.label, r.status.value, _fmt_value(r.value),
+                 r.detail) for r in self.results]
+        limit = None if verbose else MAX_LINES
         lines = [f"{self.item}"]
         if self.parameters:
-            lines.append("  parameters: " + ", ".join(f"{k}={v}" for k, v in self.parameters.items()))
-        lines.append("  " + "  ".join(h.ljust(w) for h, w in zip(head[:4], widths)) + "  detail")
-        for row in rows:
-            lines.append("  " + "  ".join(c.ljust(w) for c, w in zip(row[:4], widths)) + "  " + row[4])
+            shown = ", ".join(f"{k}={v}" for k, v in self.parameters.items())
+            lines.extend(wrap_block("parameters: " + shown, width, indent="  ", limit=None))
+        lines.extend(table(("kind", "name", "status", "value", "detail"), rows, width=width, flexible=(1, 3, 4),
+                           weights=(2, 1, 3), floors=(30, 10, 34), limit=limit))
         for block in self.text_details:
             lines.append("")
-            lines.extend("  " + line for line in block.splitlines())
-        lines.append(f"  verdict: {self.verdict}")
+            lines.extend(wrap_block(block, width, indent="  ", limit=limit))
+        lines.extend(wrap_block(f"verdict: {self.verdict}", width, indent="  ", limit=None))
         return "\n".join(lines)
 
 

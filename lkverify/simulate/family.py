@@ -53,6 +53,7 @@ from sympy.printing.pycode import PythonCodePrinter
 from ..declare.symbols import t
 from ..declare.system import System
 from ..errors import InputError, UnsupportedInput
+from ..memo import Memo
 from .compile import _parse, symbolic_system
 
 __all__ = ["CompiledFamily", "compile_family"]
@@ -313,7 +314,7 @@ def _source(exprs, lags, starts, n_states: int, n: int, n_grid: int, n_lags: int
 
 # -- compiled functions, per process ------------------------------------------------------
 
-_CACHE: dict = {}
+_CACHE = Memo(64)  # key → compiled functions
 _LOCK = threading.Lock()
 
 

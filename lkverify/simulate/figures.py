@@ -175,7 +175,9 @@ def plot_runs(trajectories: Mapping, path, *, title: str, series: Sequence, dist
             _distance_panel(axes[per_run * k + 1], tr, distance, distance_name, vectors, stop, run_label)
     if envelope is not None:
         _envelope_panel(axes[-1], trajectories[envelope.run], envelope, chi, envelope_caption)
-    fig.savefig(path, dpi=110)
+    from ..report.files import save_figure
+
+    save_figure(fig, path, dpi=110)
 
 
 def _series_panel(ax, tr, series, run_label, plot_until, ylabel, logy, targets, *, window_only) -> float:

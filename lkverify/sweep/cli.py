@@ -13,23 +13,30 @@ import math
 import sys
 from pathlib import Path
 
-import numpy as np
-
 from ..errors import InputError
-from ..report.results import Report, Result
 from ..status import Status
-from .engine import DEFAULT_CHUNK_SIZE, SweepOptions, SweepResult, check_table_path, sweep
-from .evaluate import CLASSES, run_chunk
 
-__all__ = ["add_parser", "run"]
+# NumPy, the engine and the report are imported where they are used: ``lkverify --help`` reads HELP and builds no
+# sweep (the command line adds the arguments, add_arguments, when ``sweep`` is parsed or its help shown)
+
+__all__ = ["HELP", "add_arguments", "add_parser", "run"]
 
 EXAMPLE = 'lkverify sweep aleksandrov2023.fig1 --set "F=diag(h,h,h)" --grid b=-3:3:61 --grid h=0.1:2:40'
+
+#: the one-line help of ``lkverify sweep``
+HELP = ("map where in the gain plane a theorem applies and the system converges: hypotheses, linear margin and "
+        "simulation at every grid point, on Dask; e.g. " + EXAMPLE)
 
 
 def add_parser(sub, *, quiet, seconds, json_help) -> None:
     """Register ``sweep`` on the subcommand parser ``sub``."""
-    p = sub.add_parser("sweep", help="map where in the gain plane a theorem applies and the system converges: "
-                       "hypotheses, linear margin and simulation at every grid point, on Dask; e.g. " + EXAMPLE)
+    add_arguments(sub.add_parser("sweep", help=HELP), quiet=quiet, seconds=seconds, json_help=json_help)
+
+
+def add_arguments(p, *, quiet, seconds, json_help) -> None:
+    """The arguments of ``lkverify sweep`` on its parser ``p``."""
+    from .engine import DEFAULT_CHUNK_SIZE
+
     p.add_argument("item", help="a catalogued example with one run, e.g. aleksandrov2023.fig1")
     p.add_argument("--grid", dest="grids", action="append", default=[], metavar="NAME=START:STOP:N",
                    help="a swept name: N values from START to STOP (read exactly); repeat for a plane")
@@ -41,8 +48,10 @@ def add_parser(sub, *, quiet, seconds, json_help) -> None:
     p.add_argument("--plot", default=None, metavar="FILE.png",
                    help="the map (default: the table's name with .png); PNG, PDF or SVG by the suffix")
     p.add_argument("--scheduler", default=None, metavar="ADDRESS",
-                   help="a running Dask scheduler (tcp://host:8786); default: a local cluster, one worker per core; "
-                        "'synchronous': no cluster, in this process")
+                   help="a running Dask scheduler (tcp://host:8786); default: in this process for a sweep of "
+                        "fewer than 300 points to simulate (lkverify.sweep.engine.IN_PROCESS_POINTS) unless "
+                        "--workers is given, else a local cluster, one worker per core; 'local': a local cluster "
+                        "whatever the size; 'synchronous': no cluster, in this process")
     p.add_argument("--workers", type=int, default=None, metavar="N", help="workers of the local cluster (default: cores)")
     p.add_argument("--chunk-size", type=int, default=DEFAULT_CHUNK_SIZE, metavar="N",
                    help=f"points per task (default {DEFAULT_CHUNK_SIZE})")
@@ -61,8 +70,17 @@ def add_parser(sub, *, quiet, seconds, json_help) -> None:
     quiet(p)
 
 
+def run_chunk(sim, points, valid):
+    """:func:`lkverify.sweep.evaluate.run_chunk` (imported on first use; a test replaces this name)."""
+    from .evaluate import run_chunk as evaluate
+
+    return evaluate(sim, points, valid)
+
+
 def run(args, *, check_output_path, emit) -> int:
     """Run ``lkverify sweep`` from parsed ``args``; returns the exit code."""
+    from .engine import SweepOptions, check_table_path, sweep
+
     if not args.grids:
         raise InputError(f"sweep: expected at least one --grid NAME=START:STOP:N; e.g. {EXAMPLE}")
     if args.t_end is not None and not (math.isfinite(args.t_end) and args.t_end > 0):
@@ -75,8 +93,10 @@ def run(args, *, check_output_path, emit) -> int:
     options = SweepOptions(t_end=args.t_end, chunk_size=args.chunk_size, scheduler=args.scheduler,
                            workers=args.workers, budget=args.budget, fresh=args.fresh, max_steps=args.max_steps,
                            prove=args.prove, prove_max_boxes=args.prove_max_boxes)
-    bar = _Bar(enabled=not args.quiet)
-    cells = _Bar(enabled=not args.quiet, label="prove", unit="cells")
+    from ..report.progress import Progress
+
+    bar = Progress("sweep", unit="points", enabled=not args.quiet)
+    cells = Progress("prove", unit="cells", enabled=not args.quiet)
     result = sweep(args.item, grid=args.grids, sets=args.sets, out=out, options=options, progress=bar,
                    prove_progress=cells)
     bar.close()
@@ -87,34 +107,6 @@ def run(args, *, check_output_path, emit) -> int:
     return emit([_report(result, marks, plot, figure_note)], json_out=args.json)
 
 
-class _Bar:
-    """A progress bar on stderr (a line per 10 % when stderr is not a terminal)."""
-
-    def __init__(self, enabled: bool, label: str = "sweep", unit: str = "points"):
-        self.enabled, self.tty = enabled, sys.stderr.isatty()
-        self.label, self.unit = label, unit
-        self.last = -1
-        self.shown = False
-
-    def __call__(self, done: int, total: int, seconds: float) -> None:
-        if not self.enabled:
-            return
-        frac = done / total if total else 1.0
-        eta = seconds * (1 - frac) / frac if frac > 0 else math.inf
-        text = f"{self.label}: {done}/{total} {self.unit}, {seconds:.0f} s, about {eta:.0f} s left"
-        if self.tty:
-            k = int(30 * frac)
-            print(f"\r[{'#' * k}{'.' * (30 - k)}] {100 * frac:5.1f}% {text}   ", end="", file=sys.stderr, flush=True)
-            self.shown = True
-        elif int(10 * frac) != self.last:
-            self.last = int(10 * frac)
-            print(f"[{10 * self.last:3d}%] {text}", file=sys.stderr, flush=True)
-
-    def close(self) -> None:
-        if self.shown:
-            print(file=sys.stderr, flush=True)
-
-
 def _marks(result: SweepResult) -> list:
     """The paper's gains in the swept plane: (mark description, Mark) with the outcome simulated there.
 
@@ -123,6 +115,8 @@ def _marks(result: SweepResult) -> list:
     reported beside it.
     """
     import dataclasses
+
+    import numpy as np
 
     from ..catalogue.loader import find_items
     from .marks import paper_marks
@@ -149,6 +143,8 @@ def _marks(result: SweepResult) -> list:
 
 def _region_at(result: SweepResult, grid, coords) -> str:
     """The simulated class of the grid point nearest to ``coords``, or "outside the grid"."""
+    import numpy as np
+
     idx = []
     for a in grid.axes:
         x = float(coords[a.name])
@@ -180,6 +176,11 @@ def _figure(result: SweepResult, meta: dict, plot: str) -> str:
 
 
 def _report(result: SweepResult, marks, plot: str, figure_note: str) -> Report:
+    import numpy as np
+
+    from ..report.results import Report, Result
+    from .evaluate import CLASSES
+
     meta = result.meta
     n = result.table.num_rows
     grid_text = " × ".join(f"{a['name']} ∈ [{a['start']}, {a['stop']}] ({a['n']})" for a in meta["grid"])

@@ -29,7 +29,7 @@ class _client:
                      "distributed.core", "distributed.http.proxy"):
             logging.getLogger(name).setLevel(logging.ERROR)
         address = self.options.scheduler
-        if address is None:
+        if address in (None, "local"):
             n = self.options.workers or os.cpu_count() or 1
             self.cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None)
             self.client = Client(self.cluster)

@@ -46,6 +46,11 @@ __all__ = ["SweepOptions", "SweepResult", "sweep", "DEFAULT_CHUNK_SIZE"]
 DEFAULT_CHUNK_SIZE = 64
 
 
+#: a sweep with fewer points to simulate runs in this process (a Dask cluster's start, about 10 s, would
+#: cost more than the second worker saves), unless a scheduler or a number of workers is given
+IN_PROCESS_POINTS = 300
+
+
 @dataclasses.dataclass(frozen=True)
 class SweepOptions:
     """Options of :func:`sweep`.
@@ -65,7 +70,9 @@ class SweepOptions:
     chunk_size : int
         Points per task.
     scheduler : str, optional
-        None: a LocalCluster; "synchronous": in this process; else a scheduler address.
+        None: in this process for fewer than :data:`IN_PROCESS_POINTS` points to simulate (unless
+        ``workers`` is given), else a LocalCluster; "local": a LocalCluster whatever the size;
+        "synchronous": in this process; else a scheduler address.
     workers : int, optional
         Worker processes of the LocalCluster (default: the number of cores).
     budget : float, optional
@@ -163,6 +170,16 @@ class SweepResult:
     errors: tuple = ()
     plan: object = None
     timings: dict = dataclasses.field(default_factory=dict)
+
+    def _repr_html_(self) -> str:
+        """Jupyter: the item, the points per simulated class and where the table is."""
+        import html
+
+        rows = "".join(f"<tr><td>{html.escape(str(k))}</td><td>{v}</td></tr>" for k, v in self.counts.items())
+        state = "complete" if self.complete else "incomplete (budget spent; a rerun resumes)"
+        return (f"<div><p><b>sweep of {html.escape(self.item)}</b>: {self.table.num_rows} points, {state}, "
+                f"{self.seconds:.1f} s</p><table><tr><th>class</th><th>points</th></tr>{rows}</table>"
+                f"<p>table: <code>{html.escape(str(self.path))}</code></p></div>")
 
 
 def sweep(item, *, grid: Sequence[str] | Grid, sets: Sequence[str] = (), out, options: SweepOptions = SweepOptions(),
@@ -304,7 +321,10 @@ def _exact_columns(plan: Plan, grid: Grid) -> dict:
 
 def _run(plan, grid, chunks, todo, valid, options, finished, deadline, errors, timings) -> None:
     sim = plan.simulation
-    if options.scheduler == "synchronous":
+    points = sum(len(chunks[k]) for k in todo)
+    small = options.scheduler is None and options.workers is None and points < IN_PROCESS_POINTS
+    if options.scheduler == "synchronous" or small:   # a small sweep: starting a cluster costs more than it saves
+        timings["in process"] = True
         for k in todo:
             if deadline is not None and time.monotonic() > deadline:
                 return
@@ -438,6 +458,7 @@ def _assemble(plan, grid, chunks, done, checks, meta):
     floats = grid.floats()
     data = {"point": np.arange(n, dtype=np.int64)}
     data.update({name: floats[:, j] for j, name in enumerate(grid.names)})
+    data.update({f"{name}:exact": texts for name, texts in grid.exact_texts().items()})  # the exact grid values
     data.update({"valid": checks["valid"], "invalid_reason": checks["invalid_reason"]})
     data.update({k: v for k, v in checks.items() if k.startswith(("applies:", "margin:", "proved"))})
     data.update(sim_cols)

@@ -133,7 +133,9 @@ def plot_map(table, meta: Mapping, path, *, title: str | None = None) -> None:
         panels = fig.subplots(4, 1, sharex=True, height_ratios=(1.2 + 0.4 * len(data.theorems), 1, 1, 1))
         _strip_1d(panels, data, meta)
     fig.suptitle(text, fontsize=10)
-    fig.savefig(path, dpi=110)
+    from ..report.files import save_figure
+
+    save_figure(fig, path, dpi=110)
 
 
 def agrees(expected: str, observed: str) -> bool | None:
@@ -460,13 +462,37 @@ def _linear_2d(ax, data: _Fields, meta: Mapping) -> list:
     if not known.any():
         return [Line2D([], [], color="none", label=f"linearisation: {data.linear_note(meta)}")]
     stable = known & (a < 0)
-    label = _region_label("linearisation stable", stable, known)
+    label = _linear_label(a, known)
     ticks = patheffects.withTickedStroke(angle=90, spacing=7, length=0.6)  # 90°: ticks on the left of the path
     if stable.any() and (known & (a > 0)).any():
         for seg in _linear_boundary(a, data.values):
             ax.plot(seg[:, 0], seg[:, 1], color=_LINEAR, lw=2.0, path_effects=[ticks], zorder=4)
         label = f"{label}:\nboundary (abscissa = 0), ticks on the stable side"
     return [Line2D([], [], color=_LINEAR, lw=2.0, path_effects=[ticks], label=label)]
+
+
+def _linear_label(a: np.ndarray, known: np.ndarray) -> str:
+    """The legend of the linear layer: where the linearisation is stable, or, when nowhere, what it is instead.
+
+    A grid where every point is critical (abscissa 0: the linear test decides nothing) is
+    not "stable nowhere" as if it were unstable.
+
+    >>> import numpy as np
+    >>> _linear_label(np.array([0.0, 0.0]), np.array([True, True]))
+    'linearisation critical (abscissa 0) at every point: the linear test decides nothing'
+    >>> _linear_label(np.array([0.0, 0.5, 0.2]), np.array([True, True, True]))
+    'linearisation stable nowhere on this grid: unstable at 2, critical at 1 of 3 points'
+    >>> _linear_label(np.array([-1.0, 0.5]), np.array([True, True]))
+    'linearisation stable (1 of 2 points)'
+    """
+    stable = known & (a < 0)
+    if stable.any():
+        return _region_label("linearisation stable", stable, known)
+    n, critical, unstable = int(known.sum()), int((known & (a == 0)).sum()), int((known & (a > 0)).sum())
+    if critical == n:
+        return "linearisation critical (abscissa 0) at every point: the linear test decides nothing"
+    parts = [f"unstable at {unstable}" if unstable else "", f"critical at {critical}" if critical else ""]
+    return f"linearisation stable nowhere on this grid: {', '.join(p for p in parts if p)} of {n} points"
 
 
 def _linear_boundary(a: np.ndarray, values) -> list:
@@ -643,7 +669,7 @@ def _abscissa_1d(ax, data: _Fields, meta: Mapping) -> None:
         ax.plot(x, a, ".-", color=_LINEAR, lw=1.2, label="linear spectral abscissa")
         stable = ~np.isnan(a) & (a < 0)
         ax.fill_between(x, 0, 1, where=stable, transform=ax.get_xaxis_transform(), color=_LINEAR, alpha=0.12,
-                        step="mid", label=_region_label("linearisation stable", stable, ~np.isnan(a)))
+                        step="mid", label=_linear_label(a, ~np.isnan(a)))
         ax.axhline(0.0, color="0.2", lw=0.8)
     ax.set_ylabel("abscissa")
 

@@ -138,6 +138,15 @@ class Grid:
         cols = np.unravel_index(idx, self.shape)
         return np.stack([np.array([float(v) for v in a.values])[c] for a, c in zip(self.axes, cols)], axis=1)
 
+    def exact_texts(self) -> dict:
+        """Each axis's values at every point as exact strings (``"7/10"``), name → array of str.
+
+        >>> Grid.parse(["h=0.7:1.4:2"]).exact_texts()["h"].tolist()
+        ['7/10', '7/5']
+        """
+        cols = np.unravel_index(np.arange(self.size), self.shape)
+        return {a.name: np.array([str(v) for v in a.values], dtype=object)[c] for a, c in zip(self.axes, cols)}
+
     def text(self) -> list:
         return [a.text() for a in self.axes]
 

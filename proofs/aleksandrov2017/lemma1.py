@@ -178,7 +178,9 @@ class Lemma1Constants:
         gap.grid(alpha=0.3, which="both")
         gap.legend(fontsize=7, loc="center left")
         fig.tight_layout()
-        fig.savefig(path, dpi=120)
+        from lkverify.report.files import save_figure
+
+        save_figure(fig, path, dpi=120)
 
 
 lemma1 = Check("lemma1", parameters=P, checks=[_lemma1_check], relevant=("eps",), constants=Lemma1Constants(),

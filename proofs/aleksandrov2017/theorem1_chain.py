@@ -528,4 +528,6 @@ class EnvelopeAgainstRun:
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=8, loc="center left", bbox_to_anchor=(1.0, 0.5))
         fig.tight_layout()
-        fig.savefig(path, dpi=120)
+        from lkverify.report.files import save_figure
+
+        save_figure(fig, path, dpi=120)

@@ -359,4 +359,6 @@ class ProvedEnvelopeAgainstRun:
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=8)
         fig.tight_layout()
-        fig.savefig(path, dpi=120)
+        from lkverify.report.files import save_figure
+
+        save_figure(fig, path, dpi=120)

@@ -320,9 +320,31 @@ def plot_threshold(path, *, a=2, taus=("0.5", "0.9", "1.5"), bs=None, curves=Non
                  "dotted: |b|τ = a, the edges of (13))", fontsize=10)
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1), fontsize=8)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    from lkverify.report.files import save_figure
+
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
     return str(path)
+
+
+def point_row(values) -> Result:
+    """The run's own point (a, b, τ, F = h·I): the linearisation's verdict there, beside h*(a, b, τ).
+
+    ``estimated``: the spectral abscissa of the pseudospectral generator at the point.
+
+    >>> r = point_row(P.resolve(dict(FIGURE_GAINS[2]), use_defaults=True))      # Fig. 2: h = 0.7 < h* = 0.766
+    >>> r.status.value, r.detail.startswith("unstable at this point")
+    ('estimated', True)
+    """
+    a, b, tau, h = values["a"], values["b"], values["tau"], values["F"][0, 0]
+    abscissa = _abscissa(_damping_family(values), h, tau)
+    hstar = threshold(a, b, tau, base=values)["h_star"]
+    where = (f"h* = {hstar:.4g}" if hstar is not None and hstar > H_MIN else f"h* ≤ {H_MIN}" if hstar is not None
+             else f"unstable up to h = {H_MAX:g}")
+    verdict = "stable" if abscissa < 0 else "unstable"
+    return Result("linear", f"this point: b = {b}, h = {h}, τ = {tau}", Status.ESTIMATED,
+                  {"value": abscissa, "h_star": hstar, "h": float(h)},
+                  f"{verdict} at this point: spectral abscissa {abscissa:+.3g} at h = {h} ({where})")
 
 
 class ThresholdJob:
@@ -343,7 +365,7 @@ class ThresholdJob:
         a, tau, h = values["a"], values["tau"], values["F"][0, 0]
         taus = [str(tau / 2), str(tau), str(3 * tau / 2)]
         curves = threshold_curves(a, taus, self.bs, budget=budget)
-        rows = []
+        rows = [point_row(values)]
         for t_, hs in curves.items():
             for b, hstar in zip(self.bs, hs):
                 status = Status.UNDECIDED if isinstance(hstar, float) and math.isnan(hstar) else Status.ESTIMATED
@@ -353,6 +375,7 @@ class ThresholdJob:
                                    None if status is Status.UNDECIDED else hstar, text))
         verdict = "h*(a, b, τ) computed (spectral route, estimated)" if all(
             r.status is Status.ESTIMATED for r in rows) else "undecided: the budget ran out"
+        verdict = f"{verdict}; {rows[0].detail}"
         extra = {"curves": curves, "a": a, "point": (float(values["b"]), float(h), f"this run: b = {values['b']}, h = {h}")}
         return Report(name, shown, tuple(rows), verdict), extra
 

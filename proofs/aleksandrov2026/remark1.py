@@ -180,7 +180,9 @@ class Remark1Table:
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
         fig.tight_layout()
-        fig.savefig(path, dpi=120)
+        from lkverify.report.files import save_figure
+
+        save_figure(fig, path, dpi=120)
 
 
 def _base_alpha(rows):

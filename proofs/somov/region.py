@@ -221,7 +221,9 @@ class RegionConstants:
             ax.plot(b[0], b[1], ".", ms=4, c="navy", label="simulated on the region's boundary")
         ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2)
         ax.grid(alpha=0.3)
-        fig.savefig(path, dpi=120)
+        from lkverify.report.files import save_figure
+
+        save_figure(fig, path, dpi=120)
 
 
 _trapezoid = getattr(np, "trapezoid", None) or getattr(np, "trapz")

@@ -27,8 +27,8 @@ SLOW = ("lkverify simulate", "lkverify report", "lkverify constants aleksandrov2
         "lkverify sweep",
         # 10–50 s each on a loaded 2-core machine
         "lkverify list", "lkverify check", "lkverify constants", "lkverify linear")
-#: the examples the default run keeps (a few seconds: the README's own proof file)
-FAST = ("lkverify check my_proof.py",)
+#: the examples the default run keeps (a few seconds: the README's own proof files)
+FAST = ("lkverify check my_proof.py", "lkverify check matrix_proof.py")
 
 
 def _console_lines():
@@ -39,10 +39,15 @@ def _console_lines():
                 yield line[2:]
 
 
-def _proof_file() -> str:
+def _proof_files() -> dict:
+    """The README's proof files: every python block whose first line is ``# NAME.py: …``."""
     text = README.read_text(encoding="utf-8")
-    (block,) = [b for b in re.findall(r"```python\n(.*?)```", text, flags=re.S) if b.startswith("# my_proof.py")]
-    return block
+    blocks = re.findall(r"```python\n(.*?)```", text, flags=re.S)
+    return {m.group(1): b for b in blocks for m in [re.match(r"# (\w+\.py):", b)] if m}
+
+
+def test_the_readme_has_its_proof_files():
+    assert {"my_proof.py", "matrix_proof.py"} <= set(_proof_files())
 
 
 def _cases():
@@ -61,7 +66,8 @@ def test_the_readme_has_console_examples():
 
 @pytest.mark.parametrize("command, expected", list(_cases()))
 def test_readme_console_example(command, expected, tmp_path):
-    (tmp_path / "my_proof.py").write_text(_proof_file(), encoding="utf-8")
+    for name, source in _proof_files().items():
+        (tmp_path / name).write_text(source, encoding="utf-8")
     argv = shlex.split(command)
     proc = subprocess.run([sys.executable, "-m", "lkverify", *argv[1:], "--quiet"] if "--quiet" not in argv
                           else [sys.executable, "-m", "lkverify", *argv[1:]],
@@ -73,3 +79,9 @@ def test_readme_console_example(command, expected, tmp_path):
     for i, a in enumerate(argv):
         if a == "--plot":
             assert (tmp_path / argv[i + 1]).stat().st_size > 10_000  # a figure was written
+
+
+def test_every_readme_command_writes_its_own_file():
+    """Two README lines must not write the same figure or table (one would overwrite the other)."""
+    written = [m for line in _console_lines() for m in re.findall(r"--(?:plot|out) (\S+)", line)]
+    assert written and len(written) == len(set(written)), sorted(written)

@@ -98,3 +98,15 @@ def test_threshold_job_reports_and_plots(tmp_path, monkeypatch):
     assert (tmp_path / "h.png").stat().st_size > 10_000 and path.endswith("h.png")
     rep, _ = job.run("aleksandrov2023.linear_mu1", values, {}, budget=0)   # no time: undecided, never estimated
     assert rep.verdict.startswith("undecided")
+
+
+@pytest.mark.parametrize("number, verdict", [(1, "stable"), (2, "unstable"), (4, "unstable")])
+def test_the_constants_report_states_the_set_point(number, verdict):
+    """``constants linear_mu1 --set …``: the run's own gains get a row and the verdict (issue 27), not only the figure."""
+    from lkverify.proofs.aleksandrov2023.linear_mu1 import point_row
+
+    row = point_row(P.resolve(dict(FIGURE_GAINS[number]), use_defaults=True))
+    assert row.detail.startswith(f"{verdict} at this point")
+    assert (row.value["value"] < 0) == (verdict == "stable")
+    if verdict == "unstable":
+        assert row.value["h_star"] > row.value["h"]       # below the threshold h*

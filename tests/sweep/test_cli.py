@@ -32,6 +32,9 @@ def test_writes_table_and_map_and_marks_the_papers_gains(fig1_small, capsys):
     assert rows[(-2.0, 0.7)]["simulated"] in ("bounded", "diverged")   # Fig. 2
     assert rows[(-2.0, 0.7)]["linear_verdict"] == "unstable" and rows[(2.0, 0.7)]["linear_verdict"] == "stable"
     assert not any(rows[k]["applies:theorem3"] for k in rows)         # μ = 1: Theorem 3 needs μ > 1
+    # the exact grid values beside the doubles (h = 0.7 is 7/10, not 0.69999…)
+    assert rows[(2.0, 0.7)]["h:exact"] == "7/10" and rows[(-2.0, 1.4)]["h:exact"] == "7/5"
+    assert {r["b:exact"] for r in rows.values()} == {"-2", "0", "2"}
 
 
 def test_json_report_has_the_marks(tmp_path, capsys):
@@ -41,7 +44,7 @@ def test_json_report_has_the_marks(tmp_path, capsys):
     assert code == 0
     marks = {r["name"]: r for r in report["results"] if r["name"].startswith("Fig.")}
     assert set(marks) == {"Fig. 1 (b = 2, h = 7/10)", "Fig. 2 (b = -2, h = 7/10)"}
-    assert marks["Fig. 1 (b = 2, h = 7/10)"]["value"] == "converged"
+    assert marks["Fig. 1 (b = 2, h = 7/10)"]["value"]["value"] == "converged"
     assert all(r["status"] == "simulated" for r in marks.values())
 
 

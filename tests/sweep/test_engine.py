@@ -91,6 +91,22 @@ def test_two_worker_local_cluster_equals_serial(serial, tmp_path):
     assert columns(par.table, names) == columns(serial.table, names)
 
 
+def test_a_small_sweep_runs_in_process_without_a_cluster(serial, tmp_path, monkeypatch):
+    """No Dask cluster for a sweep under IN_PROCESS_POINTS points (issue 27), unless a scheduler or workers are given."""
+    def no_cluster(options):
+        raise AssertionError("a cluster was started for a small sweep")
+
+    monkeypatch.setattr(engine_module, "_client", no_cluster)
+    res = sweep(toy(), grid=["a=0.25:2.5:10"], out=tmp_path / "small.parquet", options=SweepOptions(chunk_size=3))
+    names = serial.table.column_names
+    assert res.complete and res.timings.get("in process") and columns(res.table, names) == columns(serial.table, names)
+    with pytest.raises(AssertionError, match="cluster was started"):   # "local" and --workers still ask for one
+        sweep(toy(), grid=["a=0.25:2.5:10"], out=tmp_path / "local.parquet", options=SweepOptions(scheduler="local"))
+    with pytest.raises(AssertionError, match="cluster was started"):
+        sweep(toy(), grid=["a=0.25:2.5:10"], out=tmp_path / "w.parquet", options=SweepOptions(workers=2))
+    assert engine_module.IN_PROCESS_POINTS > 10
+
+
 @pytest.mark.slow
 def test_existing_scheduler_with_and_without_workers(serial, tmp_path, monkeypatch):
     from distributed import LocalCluster

@@ -17,11 +17,14 @@
 * :mod:`.timevarying` — time-varying rates: :class:`TimeVaryingRate` (V̇ ≤ −α h^ν(t) V from
   steps whose coefficients are powers of h(t), and the envelope) and :class:`UpperBound`
   (a measure replaced by a bound a decided condition gives).
+* :mod:`.auto` — :class:`Auto`: a term bound whose rule lkverify finds (candidates tried in a
+  documented order, the report naming the one that proved it).
 * :mod:`.chain` — :class:`TermwiseBound`: ``lhs ≤ rhs`` with lhs a sum of labelled terms
   of V or of the exact V̇, each term bounded by a rule, the bounds summed and compared
   with rhs on the region.
 """
 
+from .auto import Auto
 from .chain import ChainResult, Decay, TermBound, TermResult, TermwiseBound, lyapunov_steps
 from .measures import Measure, Region, norm_measure, sup_norm, window_integral_measure, window_norm
 from .memory import (Evaluated, KernelBound, MemoryHolder, MemoryKrasovskii, MemoryMeasure, MemoryWeight,
@@ -32,7 +35,7 @@ from .rules import (CauchySchwarz, Context, Equal, Nonpositive, Printed, Rayleig
 from .witnesses import UnsupportedClaim, Witness, search_witness
 from .timevarying import TimeVaryingRate, UpperBound, sup_in_t, sup_on
 
-__all__ = ["BoundClaim", "CauchySchwarz", "ChainResult", "Context", "Decay", "Equal", "Measure", "Nonpositive",
+__all__ = ["Auto", "BoundClaim", "CauchySchwarz", "ChainResult", "Context", "Decay", "Equal", "Measure", "Nonpositive",
            "Printed", "QuadraticForms", "Rayleigh", "Region", "StepResult", "Template", "TermBound", "TermResult",
            "TermwiseBound", "UnsupportedClaim", "WindowWeight", "Witness", "Young", "crossed", "homogeneous_field",
            "integral_of",

@@ -199,7 +199,8 @@ class ChainResult:
         for tr in self.terms:
             rows.append(Result(Kind.BOUND, f"{self.name}: {tr.statement}", tr.status,
                                {"rule": tr.rule, "witness": None if tr.witness is None else tr.witness.to_json(),
-                                "applications": [a.to_json() for a in tr.applications]}, tr.detail))
+                                "applications": [a.to_json() for a in tr.applications]}, tr.detail,
+                               label=f"{self.name}: {' + '.join(tr.terms)}"))
         rows.append(self.to_result())
         return rows
 
@@ -425,7 +426,30 @@ class TermwiseBound:
         return ChainResult(self.name, status, detail, tuple(results), constants, rhs, _time.perf_counter() - start,
                            box_used=ctx.box_used)
 
+    def _check_auto(self, tb: TermBound, expr, statement, ctx: Context, constants: dict, search: bool) -> TermResult:
+        """``rule=Auto()``: each candidate checked as if named, the first that proves the step wins; otherwise
+        the witness search decides (failed) or the step stays undecided with what every candidate said."""
+        from .rules import Printed
+
+        tried = []
+        for rule in tb.rule.candidates(expr, ctx.at(_put(tb.bound, constants)), ctx):
+            trial = dict(constants)
+            res = self._check_term(dataclasses.replace(tb, rule=rule), expr, statement, ctx, trial, False)
+            if res.status.is_proof:
+                constants.update(trial)
+                note = f" (tried first: {', '.join(name for name, _ in tried)})" if tried else ""
+                return dataclasses.replace(res, rule=f"{res.rule}, found by Auto",
+                                           detail=f"found by Auto: {res.detail}{note}")
+            tried.append((rule.name, res.detail.split("; no witness search")[0]))
+        res = self._check_term(dataclasses.replace(tb, rule=Printed("Auto: no candidate rule proved it")), expr,
+                               statement, ctx, constants, search)
+        said = "; ".join(f"{name}: {why}" for name, why in tried)
+        return dataclasses.replace(res, rule="Auto (no rule found)",
+                                   detail=f"{res.detail}; Auto tried {len(tried)} rules: {said}")
+
     def _check_term(self, tb: TermBound, expr, statement, ctx: Context, constants: dict, search: bool) -> TermResult:
+        if getattr(tb.rule, "finds_rule", False):  # Auto (by its marker: one class however it was imported)
+            return self._check_auto(tb, expr, statement, ctx, constants, search)
         direction = self.direction
         apps: list[Application] = []
         ctx.certified = {}

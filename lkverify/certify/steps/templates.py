@@ -16,6 +16,7 @@ from sympy.core.function import AppliedUndef
 from ...declare.symbols import t
 from ...errors import InputError
 from ...status import Status
+from ...memo import Memo
 from .context import Application, Context, Rule, _cond, _factor_sign  # noqa: F401 (Context: the doctests)
 
 __all__ = ["Homogeneous", "Template"]
@@ -25,7 +26,7 @@ TEMPLATE_BOXES = 40_000
 TEMPLATE_ENCLOSURE = "taylor"
 
 
-_HOMOGENEOUS_CACHE: dict = {}  # (g, T, xs) → a certified (κ, conditions, info): one proof per process
+_HOMOGENEOUS_CACHE = Memo(512)  # (g, T, xs) → a certified (κ, conditions, info): one proof per process
 
 
 def _homogeneous_sup(g, T, xs, seconds: float | None = None, parameters=None):
@@ -370,7 +371,7 @@ class Template(Rule):
         return Application(self.name, bound, tuple(conds), ((self.constant, res.certified, info),))
 
 
-_RATIO_CACHE: dict = {}  # (ratio, box) → a certified SupResult: the same supremum recurs (other choices, pieces)
+_RATIO_CACHE = Memo(256)  # (ratio, box) → a certified SupResult: the same supremum recurs (other choices, pieces)
 
 
 def _sup_of_ratio(q, box, ctx):
@@ -397,8 +398,6 @@ def _sup_of_ratio(q, box, ctx):
                                                                      boxes=TEMPLATE_BOXES),
                     enclosure=TEMPLATE_ENCLOSURE)
     if res.certified is not None and res.status is Status.CERTIFIED and ctx.seconds_left() is None:
-        if len(_RATIO_CACHE) > 256:
-            _RATIO_CACHE.clear()
         _RATIO_CACHE[key] = res
     return res
 
