@@ -25,9 +25,10 @@ This module re-exports what a proof file needs, so that a proof imports from
 imports :mod:`lkverify.catalogue.items` then), so ``import lkverify`` itself is light.
 """
 
-import importlib
 
 from ._version import __version__
+
+from ._lazy import lazy_exports
 
 #: public name → the submodule that defines it; imported on first use (PEP 562), so that
 #: ``import lkverify`` (and the command line's ``--help``, ``--version``, ``list``) loads no SymPy
@@ -98,16 +99,5 @@ __all__ = [
 ]
 
 
-def __getattr__(name: str):
-    """The public name ``name``, imported from its submodule on first use and kept."""
-    source = _SOURCES.get(name)
-    if source is None:
-        raise AttributeError(f"module 'lkverify' has no attribute {name!r}")
-    value = getattr(importlib.import_module(source, __name__), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__():
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = lazy_exports(__name__, _SOURCES, __all__)
 

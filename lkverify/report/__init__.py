@@ -4,7 +4,8 @@ The names are loaded on first use (PEP 562), so that ``lkverify list`` can print
 schema key without importing SymPy.
 """
 
-import importlib
+
+from .._lazy import lazy_exports
 
 _SOURCES = {"Kind": ".results", "Report": ".results", "Result": ".results", "jsonable": ".results",
             "value_json": ".results", "check_writable_file": ".files", "save_figure": ".files",
@@ -13,13 +14,4 @@ _SOURCES = {"Kind": ".results", "Report": ".results", "Result": ".results", "jso
 __all__ = sorted(_SOURCES)
 
 
-def __getattr__(name):
-    if name not in _SOURCES:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(importlib.import_module(_SOURCES[name], __name__), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__():
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = lazy_exports(__name__, _SOURCES, __all__)

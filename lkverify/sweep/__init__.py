@@ -8,11 +8,12 @@ margins (exact, :mod:`.plan`), the linearisation's spectral abscissa (estimated)
 a box on which the theorems' chains are run (:mod:`.prove`), the map's proved layer.
 """
 
-import importlib
 
 __all__ = ["Axis", "CLASSES", "DEFAULT_CHUNK_SIZE", "Grid", "MAX_POINTS", "Mark", "Plan", "Simulation", "SweepOptions",
            "SweepResult", "build_plan", "classify", "load_example", "paper_marks", "plot_map",
            "run_chunk", "sweep"]
+
+from .._lazy import lazy_exports
 
 #: public name → the submodule that defines it, imported on first use (PEP 562): the command line reads
 #: :mod:`.cli`'s help without importing NumPy, Dask or the simulator
@@ -22,15 +23,4 @@ _SOURCES = {"DEFAULT_CHUNK_SIZE": ".engine", "SweepOptions": ".engine", "SweepRe
             "paper_marks": ".marks", "Plan": ".plan", "build_plan": ".plan", "load_example": ".plan"}
 
 
-def __getattr__(name: str):
-    """The public name ``name``, imported from its submodule on first use and kept."""
-    source = _SOURCES.get(name)
-    if source is None:
-        raise AttributeError(f"module 'lkverify.sweep' has no attribute {name!r}")
-    value = getattr(importlib.import_module(source, __name__), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__():
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = lazy_exports(__name__, _SOURCES, __all__)
