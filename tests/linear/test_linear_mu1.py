@@ -93,7 +93,10 @@ def test_threshold_job_reports_and_plots(tmp_path, monkeypatch):
     monkeypatch.setattr(ThresholdJob, "bs", (-2.0, 2.0))
     values = P.resolve({**FIGURE_GAINS[2]}, use_defaults=True)
     rep, extra = job.run("aleksandrov2023.linear_mu1", values, {}, budget=None)
-    assert [r.status.value for r in rep.results] == ["estimated"] * 6
+    # the --set point's own row (issue 27), then the six thresholds h*(a, b, τ)
+    assert rep.results[0].name.startswith("this point: b = ")
+    assert [r.status.value for r in rep.results] == ["estimated"] * 7
+    assert sum(r.name.startswith("h*(a = ") for r in rep.results) == 6
     path = job.plot(extra, tmp_path / "h.png")
     assert (tmp_path / "h.png").stat().st_size > 10_000 and path.endswith("h.png")
     rep, _ = job.run("aleksandrov2023.linear_mu1", values, {}, budget=0)   # no time: undecided, never estimated
