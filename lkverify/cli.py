@@ -41,7 +41,7 @@ from pathlib import Path
 from ._version import __version__
 from .options import LOAD_LIMIT_SECONDS, MAX_BUDGET_SECONDS, BudgetExceeded
 from .catalogue.loader import catalogue, find_items  # light: proofs are imported on first use
-from .errors import InputError, UnsupportedInput
+from .errors import InputError, InternalError, UnsupportedInput
 
 #: exit code of an unexpected exception (a bug in lkverify); see the module docstring
 EXIT_INTERNAL = 3
@@ -109,12 +109,15 @@ def _build_parser(*, lazy: bool = False) -> argparse.ArgumentParser:
     lp.add_argument("--json", action="store_true", help="print a JSON list of objects with the keys item, kind, title")
     _add_quiet(lp)
     rp = sub.add_parser("report", help="report every catalogued item at the papers' defaults (what the bare "
-                        "`lkverify` does); prints progress lines on stderr, about 1 minute")
+                        "`lkverify` does); prints progress lines on stderr, about 1.5 minutes in process")
     rp.add_argument("--json", action="store_true", help="print a JSON list with one object per item: item, "
                     "parameters, results (kind, name, status, value, detail), verdict and versions")
     rp.add_argument("--jobs", type=int, default=None, metavar="N",
-                    help="items run in N worker processes at once (default: the number of CPUs, at most 4; "
-                         "1: one after the other); the output order is the catalogue's")
+                    help="items run on a local Dask cluster of N worker processes (default: one after the other "
+                         "in this process); the output order is the catalogue's")
+    rp.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                    help="run the items on a running Dask scheduler (tcp://host:8786), or 'local' for a local "
+                         "cluster of one worker per CPU; default: in this process (or --jobs)")
     _add_quiet(rp)
     _add_verbose(rp)
     _add_check(sub)
@@ -347,7 +350,7 @@ def _dispatch(args) -> int:
         return 0
     if args.command in (None, "report"):
         return _report(json_out=getattr(args, "json", False), quiet=args.quiet, jobs=getattr(args, "jobs", None),
-                       verbose=args.verbose)
+                       scheduler=getattr(args, "scheduler", None), verbose=args.verbose)
     if args.command == "check":
         box = _box(args)
         values = _set_values(args.sets, box.names if box is not None else ())
@@ -718,50 +721,47 @@ def _report_one(name: str, verbose: bool = False):
     return rep.as_text(verbose=verbose), rep.to_json(), rep.holds
 
 
-def _report(*, json_out: bool, quiet: bool = False, jobs: int | None = None, verbose: bool = False) -> int:
+def _report(*, json_out: bool, quiet: bool = False, jobs: int | None = None, scheduler: str | None = None,
+            verbose: bool = False) -> int:
+    """The bare report: every item at its defaults, on :func:`lkverify.parallel.run_tasks` (issue 27).
+
+    In this process one after the other unless ``--jobs N`` (N ≥ 2: a local Dask cluster of N workers)
+    or ``--scheduler`` (a running Dask scheduler, or ``local``) is given; the output keeps the
+    catalogue's order whatever order the items finish in.
+    """
+    from .parallel import Cluster, run_tasks
+
     if jobs is not None and jobs < 1:
         raise InputError(f"--jobs: expected a positive number of worker processes, got {jobs}; e.g. --jobs 2")
     say = _progress(not quiet)
     todo = [item for pf in catalogue() for item in pf.items.values()]
-    jobs = jobs or min(os.cpu_count() or 1, 4)
     _REPORT_ITEMS.clear()
     _REPORT_ITEMS.update({item.qualified_name: item for item in todo})
     names = list(_REPORT_ITEMS)
-    outputs = None
+    in_process = scheduler in (None, "synchronous") and (jobs is None or jobs == 1)
     # theorems first (their chains are the longest), the examples' short simulations last, so that the workers
-    # end together; the output keeps the catalogue's order
+    # end together
     rank = {"Theorem": 0, "Check": 1}
     start_order = sorted(names, key=lambda n: rank.get(type(_REPORT_ITEMS[n]).__name__, 2))
-    if jobs > 1 and len(names) > 1:
-        import multiprocessing
-        from concurrent.futures import ProcessPoolExecutor
+    if in_process:
+        def one(name):
+            rep = _REPORT_ITEMS[name].run({}, progress=say)
+            return rep.as_text(verbose=verbose), rep.to_json(), rep.holds
 
-        # not "fork": a process with threads running (a test runner's, a Dask client's, a BLAS pool's) forks
-        # children that can deadlock on a lock held by another thread at the fork; that hung the slow test run
-        # in CI for over an hour. forkserver forks from a clean single-threaded server; spawn elsewhere.
-        method = "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() else "spawn"
-        context = multiprocessing.get_context(method)
-        if method == "forkserver":
-            # the server imports the proofs (and so the lkverify they use) once for all workers: lkverify.cli
-            # alone imports no proof and no SymPy
-            from .catalogue.index import PROOFS_PACKAGE, read_index
-
-            packages = sorted({f"{PROOFS_PACKAGE}.{row.package}" for row in read_index()})
-            context.set_forkserver_preload(["lkverify.cli", *packages])
-        say(f"{len(names)} items in {jobs} worker processes", force=True)
-        with ProcessPoolExecutor(jobs, mp_context=context) as pool:
-            submitted = {n: pool.submit(_report_one, n, verbose) for n in start_order}
-            futures = [submitted[n] for n in names]
-            outputs = []
-            for k, (n, fut) in enumerate(zip(names, futures)):
-                outputs.append(fut.result())
-                say(f"item {k + 1}/{len(names)} done: {n}", force=True)
-    if outputs is None:
-        outputs = []
-        for k, item in enumerate(todo):
-            say(f"item {k + 1}/{len(todo)}: {item.qualified_name}", force=True)
-            rep = item.run({}, progress=say)
-            outputs.append((rep.as_text(verbose=verbose), rep.to_json(), rep.holds))
+        fn, tasks = one, {n: (n,) for n in names}
+    else:
+        fn, tasks = _report_one, {n: (n, verbose) for n in start_order}
+        where = "a Dask scheduler at " + scheduler if scheduler not in (None, "local") else \
+            f"a local Dask cluster of {jobs or os.cpu_count() or 1} workers"
+        say(f"{len(names)} items on {where}", force=True)
+    outputs: dict = {}
+    for name, out, exc in run_tasks(fn, tasks, Cluster(scheduler=None if in_process else scheduler, workers=jobs),
+                                    in_process=in_process):
+        if exc is not None:
+            raise InternalError(f"the report of {name} failed: {type(exc).__name__}: {exc}") from exc
+        outputs[name] = out
+        say(f"item {len(outputs)}/{len(names)} done: {name}", force=True)
+    outputs = [outputs[n] for n in names]
     say(f"{len(todo)} items done", force=True)
     if json_out:
         versions = _versions(PROOF_LIBRARIES)

@@ -36,7 +36,7 @@ import numpy as np
 from ..errors import InputError
 from ..report.files import check_writable_file
 from .evaluate import CLASSES, run_chunk
-from .cluster import _client
+from ..parallel import run_tasks
 from .grid import Grid
 from .plan import Plan, PointChecks, build_plan, holds, sub_grids, weakest
 
@@ -323,41 +323,18 @@ def _run(plan, grid, chunks, todo, valid, options, finished, deadline, errors, t
     sim = plan.simulation
     points = sum(len(chunks[k]) for k in todo)
     small = options.scheduler is None and options.workers is None and points < IN_PROCESS_POINTS
-    if options.scheduler == "synchronous" or small:   # a small sweep: starting a cluster costs more than it saves
-        timings["in process"] = True
-        for k in todo:
-            if deadline is not None and time.monotonic() > deadline:
-                return
-            try:
-                cols = run_chunk(sim, grid.floats(chunks[k]), valid[chunks[k]])
-            except Exception as exc:   # a point the integrator could not take: keep the others
-                errors[k] = f"chunk {k} failed: {type(exc).__name__}: {exc}"
-                continue
-            finished(k, cols)
-        return
-    if sim.family is not None:
+    if sim.family is not None and not small and options.scheduler != "synchronous":
         # the integrator kernel is compiled once per machine (numba's disk cache): here, before the workers
         # start, rather than by every worker at once on a first run (about 35 s each)
         from ..simulate import dopri  # noqa: F401
-    mark = time.monotonic()
-    with _client(options) as client:
-        timings["cluster start"] = time.monotonic() - mark
-        shipped = client.scatter(sim, broadcast=True)
-        from distributed import as_completed
-
-        futures = {client.submit(run_chunk, shipped, grid.floats(chunks[k]), valid[chunks[k]], pure=False): k
-                   for k in todo}
-        remaining = None if deadline is None else max(0.0, deadline - time.monotonic())
-        try:
-            for fut in as_completed(futures, timeout=remaining):
-                k = futures[fut]
-                if fut.status == "error":
-                    exc = fut.exception()
-                    errors[k] = f"chunk {k} failed on a worker: {type(exc).__name__}: {exc}"
-                    continue
-                finished(k, fut.result())
-        except TimeoutError:
-            client.cancel(list(futures))
+    tasks = {k: (grid.floats(chunks[k]), valid[chunks[k]]) for k in todo}
+    # a small sweep runs in process: starting a cluster costs more than it saves
+    for k, cols, exc in run_tasks(run_chunk, tasks, options, in_process=small, shared=sim, deadline=deadline,
+                                  timings=timings):
+        if exc is not None:   # a point the integrator could not take: keep the others
+            errors[k] = f"chunk {k} failed: {type(exc).__name__}: {exc}"
+            continue
+        finished(k, cols)
 
 
 # -- files -------------------------------------------------------------------------------------------

@@ -230,7 +230,7 @@ def prove_grid(plan, grid, checks: Mapping, options, deadline=None, progress=Non
 
     kw = dict(max_boxes=options.prove_max_boxes, equilibrium=equilibrium)
     tasks = _segments(jobs, grid, options)
-    if options.scheduler == "synchronous":
+    if options.scheduler == "synchronous":   # in order, each cell hinting the next one's choices
         for short, name, ks in tasks:
             for k in ks:
                 if deadline is not None and time.monotonic() > deadline:
@@ -238,30 +238,24 @@ def prove_grid(plan, grid, checks: Mapping, options, deadline=None, progress=Non
                 hint = _last_choices(out, short, ks, k)
                 record(short, k, prove_cell(name, values, cell_box(grid, k), hint=hint, **kw))
         return out
-    from .cluster import _client
+    from ..parallel import run_tasks
 
-    with _client(options) as client:
-        from distributed import as_completed
-
-        futures = {client.submit(prove_cells, name, values, [(k, cell_box(grid, k)) for k in ks], pure=False,
-                                 **kw): (short, ks) for short, name, ks in tasks}
-        remaining = None if deadline is None else max(0.0, deadline - time.monotonic())
-        try:
-            for fut in as_completed(futures, timeout=remaining):
-                short, ks = futures[fut]
-                if fut.status == "error":
-                    exc = fut.exception()
-                    if isinstance(exc, InternalError):
-                        raise exc
-                    for k in ks:
-                        record(short, k, {"status": "undecided", "choices": "", "envelope": np.nan,
-                                          "detail": f"failed on a worker: {type(exc).__name__}: {exc}"})
-                    continue
-                for k, res in fut.result():
-                    record(short, k, res)
-        except TimeoutError:
-            client.cancel(list(futures))
+    submitted = {i: (name, values, [(k, cell_box(grid, k)) for k in ks], kw) for i, (_, name, ks) in enumerate(tasks)}
+    for i, cells, exc in run_tasks(_prove_cells_kw, submitted, options, deadline=deadline):
+        short, _, ks = tasks[i]
+        if exc is not None:
+            for k in ks:
+                record(short, k, {"status": "undecided", "choices": "", "envelope": np.nan,
+                                  "detail": f"failed on a worker: {type(exc).__name__}: {exc}"})
+            continue
+        for k, res in cells:
+            record(short, k, res)
     return out
+
+
+def _prove_cells_kw(name, values, cells, kw):
+    """:func:`prove_cells` with its keyword options as one argument (a task of :func:`lkverify.parallel.run_tasks`)."""
+    return prove_cells(name, values, cells, **kw)
 
 
 #: cells per task of a proved sweep at most (run in order along the first axis, each hinting the next)

@@ -188,22 +188,48 @@ class _PoolStarted(BaseException):  # not caught as an internal error
     pass
 
 
-def test_the_catalogue_report_does_not_fork_a_threaded_process(capsys, monkeypatch):
-    # os.fork() in a process with other threads (pytest-xdist's, Dask's, BLAS's) can copy a lock some thread holds
-    # into a child that then waits on it forever: the slow test run hung in CI past its 90 minutes that way
-    import concurrent.futures
+def _one_item_catalogue(monkeypatch, name="somov.saturation"):
+    """The report's catalogue cut to one quick item (the whole one takes about 95 s in process)."""
+    from types import SimpleNamespace
 
-    seen = {}
+    import lkverify.cli as cli
 
-    class Recorder:
-        def __init__(self, jobs, mp_context=None):
-            seen["method"] = mp_context.get_start_method() if mp_context is not None else "default"
-            raise _PoolStarted
+    (item,) = cli.find_items(name)
+    monkeypatch.setattr(cli, "catalogue", lambda: [SimpleNamespace(items={name: item})])
+    return name
 
-    monkeypatch.setattr(concurrent.futures, "ProcessPoolExecutor", Recorder)
-    with pytest.raises(_PoolStarted):
-        main(["report", "--jobs", "2", "--quiet"])
-    assert seen["method"] in ("forkserver", "spawn")
+
+def test_the_report_runs_on_the_one_parallel_back_end(capsys, monkeypatch):
+    """In this process by default; --jobs 2 and --scheduler local ask lkverify.parallel for a Dask cluster (issue 27).
+
+    No ProcessPoolExecutor of its own: the sweep's back-end is the only one.
+    """
+    import lkverify.parallel as parallel
+
+    def no_cluster(where):
+        raise _PoolStarted(where)
+
+    monkeypatch.setattr(parallel, "_client", no_cluster)
+    name = _one_item_catalogue(monkeypatch)
+    assert main(["report", "--quiet"]) == 0
+    out = capsys.readouterr().out
+    assert name in out and "1 items: 1 with every result holding" in out
+    for argv in (["--jobs", "2"], ["--scheduler", "local"]):
+        with pytest.raises(_PoolStarted) as started:
+            main(["report", "--quiet", *argv])
+        where = started.value.args[0]
+        assert (where.workers, where.scheduler) == ((2, None) if argv[0] == "--jobs" else (None, "local"))
+    source = Path(main.__code__.co_filename).read_text()
+    assert "ProcessPoolExecutor" not in source
+
+
+@pytest.mark.slow  # about 20 s: a local Dask cluster of 2 workers, each loading the catalogue
+def test_the_report_on_dask_is_the_report_in_process(capsys, monkeypatch):
+    _one_item_catalogue(monkeypatch)
+    assert main(["report", "--quiet"]) == 0
+    here = capsys.readouterr().out
+    assert main(["report", "--quiet", "--jobs", "2"]) == 0
+    assert capsys.readouterr().out == here
 
 
 @pytest.mark.slow  # about 25 s: three checks of Theorem 2; the default run checks aleksandrov2026.theorem1

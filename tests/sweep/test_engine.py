@@ -18,7 +18,7 @@ from lkverify import Equation, InputError, Parameters, Series, System, Term, Vec
 from lkverify.catalogue.examples import Example
 from lkverify.simulate import Run
 from lkverify.sweep import Grid, SweepOptions, build_plan, classify, sweep
-from lkverify.sweep import cluster as cluster_module
+from lkverify import parallel as cluster_module
 from lkverify.sweep import engine as engine_module
 from lkverify.simulate.solver import Outcome
 
@@ -96,7 +96,7 @@ def test_a_small_sweep_runs_in_process_without_a_cluster(serial, tmp_path, monke
     def no_cluster(options):
         raise AssertionError("a cluster was started for a small sweep")
 
-    monkeypatch.setattr(engine_module, "_client", no_cluster)
+    monkeypatch.setattr(cluster_module, "_client", no_cluster)
     res = sweep(toy(), grid=["a=0.25:2.5:10"], out=tmp_path / "small.parquet", options=SweepOptions(chunk_size=3))
     names = serial.table.column_names
     assert res.complete and res.timings.get("in process") and columns(res.table, names) == columns(serial.table, names)
