@@ -116,12 +116,31 @@ class Tracks(RunClaim):
         return f"{self.run}: e → 0, ω → ω_d"
 
     def check(self, example, trajectories):
-        err = errors(trajectories[self.run])
+        tr = trajectories[self.run]
+        err = errors(tr)
         e_T, w_T = float(err["e"][-1]), float(err["omega_e"][-1])
         ok = e_T < self.tol and w_T < self.tol
-        return self._res(ok, {"e": e_T, "omega_e": w_T},
-                         f"‖e‖ = {e_T:.3g}, ‖ω − ω_d‖ = {w_T:.3g} at t = {trajectories[self.run].t[-1]:g} "
-                         f"(need < {self.tol:g}); attitude distance {float(err['attitude'][-1]):.3g}")
+        t_below = _time_below(tr.t, np.maximum(err["e"], err["omega_e"]), self.tol)
+        when = (f"both below {self.tol:g} from t = {t_below:.4g} on" if t_below is not None
+                else f"not both below {self.tol:g} to the end of the run")
+        return self._res(ok, {"e": e_T, "omega_e": w_T, "t_below": t_below},
+                         f"‖e‖ = {e_T:.3g}, ‖ω − ω_d‖ = {w_T:.3g} at t = {tr.t[-1]:g} "
+                         f"(need < {self.tol:g}); {when} (samples); attitude distance {float(err['attitude'][-1]):.3g}")
+
+
+def _time_below(times, signal, tol):
+    """The first sample time from which ``signal`` stays below ``tol`` to the end of the run (None: never).
+
+    >>> _time_below(np.array([0.0, 1.0, 2.0, 3.0]), np.array([1.0, 0.1, 0.5, 0.1]), 0.2)
+    3.0
+    >>> _time_below(np.array([0.0, 1.0]), np.array([1.0, 0.3]), 0.2) is None
+    True
+    """
+    above = np.nonzero(~(np.asarray(signal) < tol))[0]
+    if above.size == 0:
+        return float(times[0])
+    k = int(above[-1]) + 1
+    return float(times[k]) if k < len(times) else None
 
 
 @dataclasses.dataclass(frozen=True)

@@ -2,8 +2,10 @@
 and every checker refutes a mutated claim (a wrong term of Y, a flipped sign in (2.8), a wrong γ, a
 region too large) while accepting a true claim written differently."""
 
+import dataclasses
 import importlib
 
+import numpy as np
 import pytest
 import sympy
 
@@ -181,6 +183,19 @@ def test_example_simulations():
     ex = importlib.import_module("lkverify.proofs.zaremba1997.example").example
     rep = ex.run()
     assert rep.exit_code == 0, rep.as_text()
+    # the tracking claims say from when ‖e‖ and ‖ω − ω_d‖ stay below their tolerance (issue 24 item 4)
+    mod = importlib.import_module("lkverify.proofs.zaremba1997.example")
+    trs = ex.simulate()
+    for claim in [c for c in ex.claims if isinstance(c, mod.Tracks)]:
+        res = claim.check(ex, trs)
+        t_below = res.value["t_below"]
+        assert t_below is not None and f"from t = {t_below:.4g} on" in res.detail
+        err = mod.errors(trs[claim.run])
+        after = trs[claim.run].t >= t_below
+        assert np.all(np.maximum(err["e"], err["omega_e"])[after] < claim.tol)
+        strict = dataclasses.replace(claim, tol=1e-12)   # a tolerance never reached: failed, no time
+        res = strict.check(ex, trs)
+        assert res.status is Status.FAILED and res.value["t_below"] is None
 
 
 def test_theorem1_identity_for_every_parameter():
