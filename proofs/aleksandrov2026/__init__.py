@@ -28,7 +28,8 @@ r1 = (1/√2, 1/√2, 0), r2 = (−1/√2, 1/√2, 0), r3 = (0, 0, 1), α1 = α2
 Modules: :mod:`.equations` (parameters, states, (2), (7), (13)), :mod:`.theorem1`,
 :mod:`.theorem1_bound` (the printed V̇ bound with c5…c10 on the exact V̇, proved),
 :mod:`.functional9`, :mod:`.theorem1_chain` (the proof's chain to the conclusion, its choices),
-:mod:`.remark1` (the certified δ against τ and α), :mod:`.remark3` (β ≤ 0 with G = a g I: the threshold a*),
+:mod:`.remark1` (the certified δ against τ and α), :mod:`.remark1_runs`
+(simulations at τ = 2, 5, 10 with α scaled), :mod:`.remark3` (β ≤ 0 with G = a g I: the threshold a*),
 :mod:`.theorem2`, :mod:`.theorem2_bound` (the printed γβc7 step, refuted for β < 0, and its
 corrected form), :mod:`.theorem2_chain` (the proof of Theorem 2 to its conclusion with memory
 measures, its choices, the printed V̇ bound and final estimates), :mod:`.example` (section 5).

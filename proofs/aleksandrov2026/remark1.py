@@ -12,7 +12,9 @@ the largest region where (11), (12) hold — so comparing two of them supports o
 support the remark; it cannot refute it.
 
 The check evaluates three points (τ = 1/4 and 4 at the run's α, and 4α at τ = 4) with the
-optimised δ only (estimated, about a second); the certification of the whole table
+optimised δ only (estimated, about a second), and simulates (2), (7) from the paper's initial
+data of section 5 at τ ∈ :data:`SIM_TAUS` with α1, α2 scaled by :data:`SIM_SCALES`
+(:mod:`.remark1_runs`: the batch integrator, one compiled loop; status simulated); the certification of the whole table
 (τ ∈ {1/4, 1/2, 1, 2, 4} × k ∈ {1, 2, 4}, about 75 s) and its figure are the constants job:
 ``lkverify constants aleksandrov2026.remark1 --plot delta_tau.png``.
 """
@@ -27,9 +29,10 @@ import sympy
 from lkverify import Check, Report, Result, Status
 
 from .equations import PAPER, P
+from .remark1_runs import SIM_SCALES, SIM_TAUS, simulated_advice
 from .theorem1_chain import CONCLUSION, optimal_choices, steps
 
-__all__ = ["TAUS", "SCALES", "certified_delta", "optimised_delta", "remark1"]
+__all__ = ["TAUS", "SCALES", "SIM_TAUS", "SIM_SCALES", "certified_delta", "optimised_delta", "remark1"]
 
 TAUS = ("1/4", "1/2", "1", "2", "4")
 SCALES = ("1", "2", "4")
@@ -122,7 +125,7 @@ def _remark1_check(v, *, budget=60.0):
                      "“an increase of the delay leads to a decrease of δ” (τ = 1/4 → 4)", True),
             _compare(high, strong, "Remark 1: larger α1, α2 help at a large delay",
                      "“one has to increase α1, α2” (α × 4 at τ = 4)", False)]
-    return rows
+    return rows + simulated_advice(v, budget=budget)
 
 
 class Remark1Table:
