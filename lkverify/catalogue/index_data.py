@@ -32,7 +32,7 @@ ROWS = (
     ('aleksandrov2023.linear_mu1', 'aleksandrov2023', 'check', 'μ = 1: the linearisation at the Fig. 1, 2, 4 gains decided, the damping threshold h*(a, b, τ)', 'aleksandrov2023'),
     ('aleksandrov2026.theorem1_bound', 'aleksandrov2026', 'check', 'Theorem 1: the printed V̇ bound with c5…c10, term by term on the exact V̇', 'aleksandrov2026'),
     ('aleksandrov2026.theorem1', 'aleksandrov2026', 'theorem', 'Theorem 1: delayed nonlinear restoring torque, stable for every τ > 0 (the proof checked to the end)', 'aleksandrov2026'),
-    ('aleksandrov2026.remark1', 'aleksandrov2026', 'check', 'Remark 1: the region δ the proof of Theorem 1 allows, against τ and α1, α2 (certified: the constants job)', 'aleksandrov2026'),
+    ('aleksandrov2026.remark1', 'aleksandrov2026', 'check', 'Remark 1: the region δ the proof of Theorem 1 allows against τ and α1, α2 (certified: the constants job), and runs with α1, α2 scaled at τ = 2, 5, 10', 'aleksandrov2026'),
     ('aleksandrov2026.remark3', 'aleksandrov2026', 'check', 'Remark 3: β ≤ 0 is allowed with G = a g I; Assumption 2 ⇔ β + a∫g > 0, the threshold a* exact', 'aleksandrov2026'),
     ('aleksandrov2026.theorem2', 'aleksandrov2026', 'theorem', 'Theorem 2: nonlinear PID with a fading-memory kernel (the proof checked to the end)', 'aleksandrov2026'),
     ('aleksandrov2026.theorem2_bound', 'aleksandrov2026', 'check', "The printed γβc7 term of Theorem 2's V̇ bound (β ≤ 0 allowed), as printed and corrected", 'aleksandrov2026'),

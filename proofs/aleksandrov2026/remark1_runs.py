@@ -35,7 +35,6 @@ from lkverify.simulate.family import compile_family
 from lkverify.sweep.evaluate import classify
 
 from .equations import system
-from .example import HISTORY
 
 __all__ = ["LEVEL", "SIM_SCALES", "SIM_TAUS", "T_END", "figure", "simulated_advice"]
 
@@ -63,6 +62,8 @@ def _distance(y: np.ndarray, r1: np.ndarray, r2: np.ndarray) -> np.ndarray:
 
 def _integrate(values, taus, scales):
     """(grid of (τ, factor), sample times, distance per point (rows), outcomes) on the batch integrator."""
+    from .example import HISTORY  # here, not at the top: the catalogue lists items in their modules' import order
+
     fam = compile_family(system, {k: values[k] for k in _SYSTEM_VALUES}, grid=["tau", "alpha1", "alpha2"])
     a1, a2 = sympy.sympify(values["alpha1"]), sympy.sympify(values["alpha2"])
     grid = [(tau, k) for tau in taus for k in scales]
