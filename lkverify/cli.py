@@ -2,7 +2,8 @@
 
 ``lkverify`` (= ``lkverify report [--json]``)  report of every catalogued item at the papers' defaults
 ``lkverify list``                  the catalogue
-``lkverify check ITEM [--set NAME=VALUE]... [--box NAME=LO:HI]... [--max-boxes N] [--json] [--budget S] [--load-limit S]``
+``lkverify check ITEM [--set NAME=VALUE]... [--box NAME=LO:HI]... [--max-boxes N] [--json] [--budget S] [--load-limit S] [--no-cache]``
+``lkverify cache {info,clear} [--json]``  the proof cache of decided reports (:mod:`lkverify.cache`)
 ``lkverify simulate ITEM [--set NAME=VALUE]... [--history STATE=VALUE]... [--t-end T] [--plot FILE.png] [--envelope] [--convention NAME] [--distance {combined,per-vector}] [--json] [--budget S]``
 ``lkverify constants ITEM [--set NAME=VALUE]... [--goal GOAL] [--plot FILE.png] [--json] [--budget S]``
 ``lkverify linear --set A=[[…]] [--set Ad=[[…]]] [--set D=[[…]]] [--orders 0,1,2] [--h-max H] [--h H] [--plot F.png] [--json]``
@@ -103,13 +104,15 @@ def _build_parser(*, lazy: bool = False) -> argparse.ArgumentParser:
     sub = p.add_subparsers(dest="command", parser_class=_Parser)
     p.add_argument("--quiet", action="store_true", default=False, help=QUIET_HELP)
     p.add_argument("--verbose", action="store_true", default=False, help=VERBOSE_HELP)
+    _add_no_cache(p)
     p.add_argument("--version", action="version", version=f"lkverify {__version__}",
                    help="print lkverify's version (from the installed package's metadata) and exit")
     lp = sub.add_parser("list", help="list the catalogue: name, kind (theorem, check, example) and title")
     lp.add_argument("--json", action="store_true", help="print a JSON list of objects with the keys item, kind, title")
     _add_quiet(lp)
     rp = sub.add_parser("report", help="report every catalogued item at the papers' defaults (what the bare "
-                        "`lkverify` does); prints progress lines on stderr, about 1.5 minutes in process")
+                        "`lkverify` does); prints progress lines on stderr, about 1.5 minutes in process, a second "
+                        "from the proof cache")
     rp.add_argument("--json", action="store_true", help="print a JSON list with one object per item: item, "
                     "parameters, results (kind, name, status, value, detail), verdict and versions")
     rp.add_argument("--jobs", type=int, default=None, metavar="N",
@@ -120,6 +123,11 @@ def _build_parser(*, lazy: bool = False) -> argparse.ArgumentParser:
                          "cluster of one worker per CPU; default: in this process (or --jobs)")
     _add_quiet(rp)
     _add_verbose(rp)
+    _add_no_cache(rp)
+    cp = sub.add_parser("cache", help="the proof cache of decided reports: where it is and its size (info), or "
+                        "empty it (clear)")
+    cp.add_argument("action", choices=("info", "clear"))
+    cp.add_argument("--json", action="store_true", help="print one JSON object")
     _add_check(sub)
     _add_simulate(sub)
     _add_constants(sub)
@@ -148,6 +156,7 @@ def _add_check(sub) -> None:
     c.add_argument("--json", action="store_true", help=JSON_HELP)
     _add_quiet(c)
     _add_verbose(c)
+    _add_no_cache(c)
     c.add_argument("--budget", type=_seconds, default=None, metavar="SECONDS",
                    help="your own time cap of the whole check; what it cuts is undecided (default: none -- the check "
                         "stops at its deterministic work limits, so its verdict is the same on any machine; at most 1e6)")
@@ -258,6 +267,12 @@ def _add_verbose(p) -> None:
     p.add_argument("--verbose", action="store_true", default=argparse.SUPPRESS, help=VERBOSE_HELP)
 
 
+def _add_no_cache(p) -> None:
+    p.add_argument("--no-cache", action="store_true", default=argparse.SUPPRESS,
+                   help="recompute and do not store: bypass the proof cache of decided reports (`lkverify cache info`; "
+                        "also LKVERIFY_CACHE=off)")
+
+
 def _progress(enabled: bool):
     """``say(msg, force=False)``: a progress line on stderr, after the grace period, throttled."""
     start = time.monotonic()
@@ -350,26 +365,14 @@ def _dispatch(args) -> int:
         return 0
     if args.command in (None, "report"):
         return _report(json_out=getattr(args, "json", False), quiet=args.quiet, jobs=getattr(args, "jobs", None),
-                       scheduler=getattr(args, "scheduler", None), verbose=args.verbose)
-    if args.command == "check":
-        box = _box(args)
-        values = _set_values(args.sets, box.names if box is not None else ())
-        items = find_items(args.item, load_limit=args.load_limit)
-        say = _progress(not args.quiet)
-        if box is not None:
-            from .catalogue.items import Theorem
+                       scheduler=getattr(args, "scheduler", None), verbose=args.verbose,
+                       no_cache=getattr(args, "no_cache", False))
+    if args.command == "cache":
+        from .cache import cache_command
 
-            others = [item.qualified_name for item in items if not isinstance(item, Theorem)]
-            if others:
-                raise InputError(f"--box: expected theorems, got {', '.join(others[:3])} (a box is checked for "
-                                 f"theorems only; name one theorem, e.g. aleksandrov2023.theorem3)")
-            reports = [item.run(values, budget=args.budget, progress=say, box=box, max_boxes=args.max_boxes)
-                       for item in items]
-        else:
-            if args.max_boxes is not None:
-                raise InputError("--max-boxes: only with --box NAME=LO:HI")
-            reports = [item.run(values, budget=args.budget, progress=say) for item in items]
-        return _emit(reports, json_out=args.json, verbose=args.verbose)
+        return cache_command(args.action, json_out=args.json)
+    if args.command == "check":
+        return _check(args)
     if args.command == "simulate":
         return _simulate(args)
     if args.command == "constants":
@@ -381,6 +384,35 @@ def _dispatch(args) -> int:
 
         return _sweep(args, check_output_path=check_output_path, emit=_emit)
     return 0  # pragma: no cover
+
+
+def _check(args) -> int:
+    """``lkverify check``: each item's report at the values (or over the box), through the proof cache."""
+    from .cache import cached_run, item_key, job_cache
+
+    box = _box(args)
+    values = _set_values(args.sets, box.names if box is not None else ())
+    items = find_items(args.item, load_limit=args.load_limit)
+    say = _progress(not args.quiet)
+    path_part = args.item.partition("::")[0]
+    from_file = path_part.endswith(".py") or "/" in path_part or Path(path_part).is_file()
+    # a proof file is not keyed by the cache, nor is a run under a wall-clock cap (its verdict may depend on the load)
+    cache = None if from_file or args.budget is not None else job_cache(getattr(args, "no_cache", False))
+    if box is not None:
+        from .catalogue.items import Theorem
+
+        others = [item.qualified_name for item in items if not isinstance(item, Theorem)]
+        if others:
+            raise InputError(f"--box: expected theorems, got {', '.join(others[:3])} (a box is checked for "
+                             f"theorems only; name one theorem, e.g. aleksandrov2023.theorem3)")
+    elif args.max_boxes is not None:
+        raise InputError("--max-boxes: only with --box NAME=LO:HI")
+    extra = {"box": box, "max_boxes": args.max_boxes} if box is not None else {}
+    reports = [cached_run(cache, item_key(cache, item.qualified_name, values, boxes=sorted(args.boxes),
+                                          max_boxes=args.max_boxes),
+                          lambda item=item: item.run(values, budget=args.budget, progress=say, **extra), say=say)
+               for item in items]
+    return _emit(reports, json_out=args.json, verbose=args.verbose)
 
 
 def _linear(args) -> int:
@@ -710,66 +742,20 @@ def _constants_within_budget(item, values, args, say):
     return Report(item.qualified_name, shown, (result,), f"undecided: the time budget of {args.budget:g} s ran out"), {}
 
 
-_REPORT_ITEMS: dict = {}  # qualified name → item; a worker process fills its own on first use
-
-
-def _report_one(name: str, verbose: bool = False):
-    """Run one item at its defaults (in a worker): (text, JSON, holds) — plain data, picklable."""
-    if not _REPORT_ITEMS:  # a fresh worker (forkserver / spawn): load the catalogue once per process
-        _REPORT_ITEMS.update({item.qualified_name: item for pf in catalogue() for item in pf.items.values()})
-    rep = _REPORT_ITEMS[name].run({})
-    return rep.as_text(verbose=verbose), rep.to_json(), rep.holds
-
-
 def _report(*, json_out: bool, quiet: bool = False, jobs: int | None = None, scheduler: str | None = None,
-            verbose: bool = False) -> int:
-    """The bare report: every item at its defaults, on :func:`lkverify.parallel.run_tasks` (issue 27).
+            verbose: bool = False, no_cache: bool = False) -> int:
+    """The bare report (:func:`lkverify.catalogue.report_job.catalogue_report`), printed."""
+    from .cache import job_cache
+    from .catalogue.report_job import catalogue_report
 
-    In this process one after the other unless ``--jobs N`` (N ≥ 2: a local Dask cluster of N workers)
-    or ``--scheduler`` (a running Dask scheduler, or ``local``) is given; the output keeps the
-    catalogue's order whatever order the items finish in.
-    """
-    from .parallel import Cluster, run_tasks
-
-    if jobs is not None and jobs < 1:
-        raise InputError(f"--jobs: expected a positive number of worker processes, got {jobs}; e.g. --jobs 2")
-    say = _progress(not quiet)
-    todo = [item for pf in catalogue() for item in pf.items.values()]
-    _REPORT_ITEMS.clear()
-    _REPORT_ITEMS.update({item.qualified_name: item for item in todo})
-    names = list(_REPORT_ITEMS)
-    in_process = scheduler in (None, "synchronous") and (jobs is None or jobs == 1)
-    # theorems first (their chains are the longest), the examples' short simulations last, so that the workers
-    # end together
-    rank = {"Theorem": 0, "Check": 1}
-    start_order = sorted(names, key=lambda n: rank.get(type(_REPORT_ITEMS[n]).__name__, 2))
-    if in_process:
-        def one(name):
-            rep = _REPORT_ITEMS[name].run({}, progress=say)
-            return rep.as_text(verbose=verbose), rep.to_json(), rep.holds
-
-        fn, tasks = one, {n: (n,) for n in names}
-    else:
-        fn, tasks = _report_one, {n: (n, verbose) for n in start_order}
-        where = "a Dask scheduler at " + scheduler if scheduler not in (None, "local") else \
-            f"a local Dask cluster of {jobs or os.cpu_count() or 1} workers"
-        say(f"{len(names)} items on {where}", force=True)
-    outputs: dict = {}
-    for name, out, exc in run_tasks(fn, tasks, Cluster(scheduler=None if in_process else scheduler, workers=jobs),
-                                    in_process=in_process):
-        if exc is not None:
-            raise InternalError(f"the report of {name} failed: {type(exc).__name__}: {exc}") from exc
-        outputs[name] = out
-        say(f"item {len(outputs)}/{len(names)} done: {name}", force=True)
-    outputs = [outputs[n] for n in names]
-    say(f"{len(todo)} items done", force=True)
+    outputs = catalogue_report(jobs=jobs, scheduler=scheduler, say=_progress(not quiet), cache=job_cache(no_cache))
     if json_out:
         versions = _versions(PROOF_LIBRARIES)
-        print(json.dumps([{**js, "versions": versions} for _, js, _ in outputs], indent=2, ensure_ascii=False))
+        print(json.dumps([{**p["json"], "versions": versions} for p in outputs], indent=2, ensure_ascii=False))
     else:
         print("lkverify: the catalogue at the papers' defaults\n")
-        print("\n\n".join(text for text, _, _ in outputs))
-        held = sum(h for _, _, h in outputs)
+        print("\n\n".join(p["text_verbose" if verbose else "text"] for p in outputs))
+        held = sum(p["holds"] for p in outputs)
         print(f"\n{len(outputs)} items: {held} with every result holding, {len(outputs) - held} with a failed "
               f"or undecided result\n(a failed identity against a printed formula is a finding about the paper)")
     return 0

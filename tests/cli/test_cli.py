@@ -192,10 +192,11 @@ def _one_item_catalogue(monkeypatch, name="somov.saturation"):
     """The report's catalogue cut to one quick item (the whole one takes about 95 s in process)."""
     from types import SimpleNamespace
 
+    import lkverify.catalogue.report_job as job
     import lkverify.cli as cli
 
     (item,) = cli.find_items(name)
-    monkeypatch.setattr(cli, "catalogue", lambda: [SimpleNamespace(items={name: item})])
+    monkeypatch.setattr(job, "catalogue", lambda: [SimpleNamespace(items={name: item})])
     return name
 
 
@@ -219,8 +220,10 @@ def test_the_report_runs_on_the_one_parallel_back_end(capsys, monkeypatch):
             main(["report", "--quiet", *argv])
         where = started.value.args[0]
         assert (where.workers, where.scheduler) == ((2, None) if argv[0] == "--jobs" else (None, "local"))
-    source = Path(main.__code__.co_filename).read_text()
-    assert "ProcessPoolExecutor" not in source
+    from lkverify.catalogue import report_job
+
+    for module in (main.__code__.co_filename, report_job.__file__):
+        assert "ProcessPoolExecutor" not in Path(module).read_text()
 
 
 @pytest.mark.slow  # about 20 s: a local Dask cluster of 2 workers, each loading the catalogue
