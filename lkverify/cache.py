@@ -299,8 +299,10 @@ def item_key(cache: "ProofCache | None", item: str, values: Mapping | None = Non
     return cache.key("check", item, values=values, options={"box": list(boxes), "max_boxes": max_boxes})
 
 
-def cached_run(cache: "ProofCache | None", key: str | None, run, *, say=None):
+def cached_run(cache: "ProofCache | None", key: str | None, run, *, note=None):
     """``run()`` (a report), or the report stored under ``key``; a computed report is stored.
+
+    ``note(message)`` is told when the report comes from the cache.
 
     >>> import tempfile
     >>> from lkverify.report.results import Report
@@ -316,8 +318,8 @@ def cached_run(cache: "ProofCache | None", key: str | None, run, *, say=None):
     hit = cache.get(key) if cache is not None and key is not None else None
     if hit is not None:
         report = CachedReport(hit)
-        if say:
-            say(f"{report.item}: from the proof cache ({cache.directory}; --no-cache recomputes)", force=True)
+        if note:
+            note(f"{report.item}: from the proof cache ({cache.directory}; --no-cache recomputes)")
         return report
     report = run()
     if cache is not None and key is not None:

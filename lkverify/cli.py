@@ -273,6 +273,11 @@ def _add_no_cache(p) -> None:
                         "also LKVERIFY_CACHE=off)")
 
 
+def _note(msg: str) -> None:
+    """A line on stderr at once (not throttled, no grace period): e.g. that a report came from the proof cache."""
+    print(f"lkverify: {msg}", file=sys.stderr, flush=True)
+
+
 def _progress(enabled: bool):
     """``say(msg, force=False)``: a progress line on stderr, after the grace period, throttled."""
     start = time.monotonic()
@@ -410,7 +415,8 @@ def _check(args) -> int:
     extra = {"box": box, "max_boxes": args.max_boxes} if box is not None else {}
     reports = [cached_run(cache, item_key(cache, item.qualified_name, values, boxes=sorted(args.boxes),
                                           max_boxes=args.max_boxes),
-                          lambda item=item: item.run(values, budget=args.budget, progress=say, **extra), say=say)
+                          lambda item=item: item.run(values, budget=args.budget, progress=say, **extra),
+                          note=None if args.quiet else _note)
                for item in items]
     return _emit(reports, json_out=args.json, verbose=args.verbose)
 
@@ -748,7 +754,8 @@ def _report(*, json_out: bool, quiet: bool = False, jobs: int | None = None, sch
     from .cache import job_cache
     from .catalogue.report_job import catalogue_report
 
-    outputs = catalogue_report(jobs=jobs, scheduler=scheduler, say=_progress(not quiet), cache=job_cache(no_cache))
+    outputs = catalogue_report(jobs=jobs, scheduler=scheduler, say=_progress(not quiet), cache=job_cache(no_cache),
+                               note=None if quiet else _note)
     if json_out:
         versions = _versions(PROOF_LIBRARIES)
         print(json.dumps([{**p["json"], "versions": versions} for p in outputs], indent=2, ensure_ascii=False))

@@ -38,7 +38,8 @@ def _cached(cache, names) -> dict:
     return {n: p for n, p in hits.items() if p is not None}
 
 
-def catalogue_report(*, jobs: int | None = None, scheduler: str | None = None, say=None, cache=None) -> list[dict]:
+def catalogue_report(*, jobs: int | None = None, scheduler: str | None = None, say=None, cache=None,
+                     note=None) -> list[dict]:
     """The payload (:func:`lkverify.cache.report_payload`) of every item at its defaults, in the catalogue's order.
 
     Parameters
@@ -51,6 +52,8 @@ def catalogue_report(*, jobs: int | None = None, scheduler: str | None = None, s
         ``say(message, force=False)``, progress lines.
     cache : lkverify.cache.ProofCache, optional
         Read before running an item, written after; None: every item is run.
+    note : callable, optional
+        ``note(message)``: told how many items came from the cache.
 
     Raises
     ------
@@ -80,9 +83,8 @@ def catalogue_report(*, jobs: int | None = None, scheduler: str | None = None, s
         if cache is not None:
             cache.put(names_key, {"names": names})
     keys = {n: item_key(cache, n) for n in names}
-    if outputs:
-        say(f"{len(outputs)} of {len(names)} items from the proof cache ({cache.directory}; --no-cache recomputes)",
-            force=True)
+    if outputs and note:
+        note(f"{len(outputs)} of {len(names)} items from the proof cache ({cache.directory}; --no-cache recomputes)")
     left = [n for n in names if n not in outputs]
     in_process = scheduler in (None, "synchronous") and (jobs is None or jobs == 1)
     # theorems first (their chains are the longest), the examples' short simulations last, so the workers end together
