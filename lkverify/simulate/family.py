@@ -158,7 +158,7 @@ class CompiledFamily:
         """The states of a constant history as one vector (layout order); see :meth:`initial_state`."""
         return _constant_history(history, self.layout, self.n_states)
 
-    def integrate(self, points, history: Mapping[str, object], *, t_end: float, t_eval, rtol: float = 1e-8,
+    def integrate(self, points, history: Mapping[str, object] | Sequence[Mapping], *, t_end: float, t_eval, rtol: float = 1e-8,
                   atol: float = 1e-10, divergence_bound: float = 1e8, max_steps: int = 10**6, t0: float = 0.0):
         """Integrate every point of ``points`` (an (N, len(grid)) array); see :func:`lkverify.simulate.batch.integrate`."""
         from .batch import integrate

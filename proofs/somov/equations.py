@@ -142,6 +142,11 @@ class saturation_factor(sympy.Function):
 
     _lambdacode = _numpycode
 
+    def _pythoncode(self, printer):
+        """Plain Python (``max``, ``abs``: numba compiles them) for the compiled family of the batch integrator."""
+        am, *x = (printer._print(a) for a in self.args)
+        return f"(({am})/max({am}, abs({x[0]}), abs({x[1]}), abs({x[2]})))"
+
 
 def SC(x, am) -> sympy.Matrix:
     """SC(x, a_m) of (11): q = max_i|x_i|; if q > a_m then y_i = a_m x_i/q, else y = x.

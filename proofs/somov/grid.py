@@ -1,12 +1,20 @@
-"""A grid of closed-loop runs of paper 003, integrated together (vectorised RK4).
+"""A grid of closed-loop runs of paper 003, on the library's batch integrator.
 
-The right-hand side is generated from the catalogue's symbolic :data:`~.equations.closed_loop`
-(``System.rhs``, lambdified with numpy: the saturation prints as ``numpy.maximum``), never
-retyped.  The grid runs every initial state at once with a fixed-step classical Runge–Kutta
-scheme — the library's adaptive integrator runs one trajectory at a time, which is too slow for
-the thousands of initial states a sampled region of attraction needs.  A run has converged when
-|σ(T)| and ‖ω(T)‖ are below ``tol``; a run whose |σ| exceeds ``blowup`` (the MRP of the long way
-round, Φ → 2π) or turns non-finite has not.
+The closed loop (3), (11) of :data:`~.equations.closed_loop` is compiled once by
+:func:`lkverify.simulate.family.compile_family` (the right-hand side is generated from the
+symbolic system, never retyped) and every initial state runs in one call of
+:func:`lkverify.simulate.batch.integrate` (adaptive DOPRI5, each run with its own steps, one
+constant history per run: the loop has no delay, so the history is just the initial state).
+Each run is classified at T = ``t_end``:
+
+* ``CONVERGED`` — it reached T with |σ(T)| < ``tol`` and ‖ω(T)‖ < ``tol``;
+* ``NOT_CONVERGED`` — it reached T farther out, or diverged: ‖(σ, ω)‖₂ above ``blowup``
+  (the MRP of the long way round, Φ → 2π) or a non-finite value;
+* ``UNDECIDED`` — its step budget ``max_steps`` ran out or its steps collapsed.
+
+A grid point (|σ0|, ‖ω0‖) is converged when the runs of all its direction pairs
+(:data:`DIRECTIONS`) converged, not converged when one of them did not converge, and
+undecided otherwise.  Every class is ``simulated``: observed, not proved.
 """
 
 from __future__ import annotations
@@ -14,50 +22,24 @@ from __future__ import annotations
 import dataclasses
 
 import numpy as np
-import sympy
 
-from lkverify import t
+from lkverify.simulate.batch import integrate
+from lkverify.simulate.family import compile_family
+from lkverify.simulate.solver import Outcome
 
-from .equations import P, closed_loop, omega, sigma
+from .equations import closed_loop
 
-__all__ = ["DIRECTIONS", "GridRuns", "closed_loop_rhs", "integrate_batch", "run_grid", "run_points"]
+__all__ = ["ATOL", "BLOWUP", "CONVERGED", "DIRECTIONS", "GridRuns", "MAX_STEPS", "NOT_CONVERGED", "RTOL",
+           "UNDECIDED", "classify_runs", "integrate_runs", "run_grid", "run_points"]
 
-
-def closed_loop_rhs(values):
-    """f(σ (3, n), ω (3, n)) → (σ̇, ω̇) of (3), (11) at the given parameter values (numpy, vectorised)."""
-    sub = P.substitution(P.resolve(dict(values)))
-    args = [*sigma(t), *omega(t)]
-    rhs = [closed_loop.rhs(s).xreplace(sub) for s in (sigma, omega)]
-    f = sympy.lambdify(args, [list(r) for r in rhs], modules="numpy", cse=True)
-
-    def rhs_fn(s, w):
-        out = f(*s, *w)
-        n = s.shape[1]
-        return tuple(np.array([np.broadcast_to(np.asarray(c, dtype=float), (n,)) for c in part]) for part in out)
-
-    return rhs_fn
-
-
-def integrate_batch(values, s0, w0, *, t_end, dt):
-    """RK4 from the columns of s0, w0 (3 × n) to t_end; returns σ(T), ω(T) and the max |σ| along the runs."""
-    f = closed_loop_rhs(values)
-    s, w = np.array(s0, dtype=float), np.array(w0, dtype=float)
-    smax = np.linalg.norm(s, axis=0)
-    steps = int(np.ceil(t_end / dt))
-    h = t_end / steps
-    with np.errstate(all="ignore"):
-        for _ in range(steps):
-            k1 = f(s, w)
-            k2 = f(s + h / 2 * k1[0], w + h / 2 * k1[1])
-            k3 = f(s + h / 2 * k2[0], w + h / 2 * k2[1])
-            k4 = f(s + h * k3[0], w + h * k3[1])
-            s = s + h / 6 * (k1[0] + 2 * k2[0] + 2 * k3[0] + k4[0])
-            w = w + h / 6 * (k1[1] + 2 * k2[1] + 2 * k3[1] + k4[1])
-            smax = np.fmax(smax, np.linalg.norm(s, axis=0))
-            bad = ~np.isfinite(s).all(axis=0) | (smax > 1e3)
-            s[:, bad], w[:, bad] = np.nan, np.nan
-    return s, w, smax
-
+#: step-size control of the runs (the batch integrator's defaults)
+RTOL, ATOL = 1e-8, 1e-10
+#: ‖(σ, ω)‖₂ above it ends a run as diverged
+BLOWUP = 1e3
+#: accepted steps per run (a run to t = 300 takes about 150)
+MAX_STEPS = 10**5
+#: the classes of a run and of a grid point
+CONVERGED, NOT_CONVERGED, UNDECIDED = 1, 0, -1
 
 #: direction pairs (σ0 direction, ω0 direction) sampled at each grid point
 DIRECTIONS = ((np.array([1.0, 0, 0]), np.array([1.0, 0, 0])),       # ω along σ: rotating further away
@@ -66,31 +48,105 @@ DIRECTIONS = ((np.array([1.0, 0, 0]), np.array([1.0, 0, 0])),       # ω along �
               (np.array([2, 2, 1.0]) / 3, np.array([1.0, -2, 2]) / 3))
 
 
+def integrate_runs(values, s0, w0, *, t_end, t_eval=None, rtol=RTOL, atol=ATOL, blowup=BLOWUP, max_steps=MAX_STEPS,
+                   system=closed_loop):
+    """Runs of ``system`` (default (3), (11)) from the columns of s0, w0 (3 × n) to t_end: a BatchResult.
+
+    ``t_eval`` defaults to ``[t_end]``; ``res.y[i, k]`` is (σ, ω) of run i at ``t_eval[k]``.
+
+    Examples
+    --------
+    >>> from lkverify.proofs.somov.equations import P
+    >>> res = integrate_runs(P.resolve({}), [[0.0, 0.0], [0, 0], [0, 0]], [[0.0, 0.01], [0, 0], [0, 0]],
+    ...                      t_end=300.0, t_eval=[0.0, 300.0])
+    >>> [o.value for o in res.outcomes], res.y[:, 0, 3].tolist(), bool(abs(res.y[1, -1]).max() < 1e-6)
+    (['success', 'success'], [0.0, 0.01], True)
+    """
+    s0, w0 = np.atleast_2d(np.asarray(s0, dtype=float)), np.atleast_2d(np.asarray(w0, dtype=float))
+    fam = compile_family(system, dict(values), grid=())
+    histories = [{"sigma": s0[:, i], "omega": w0[:, i]} for i in range(s0.shape[1])]
+    return integrate(fam, np.zeros((len(histories), 0)), histories, t_end=float(t_end),
+                     t_eval=[float(t_end)] if t_eval is None else t_eval, rtol=rtol, atol=atol,
+                     divergence_bound=blowup, max_steps=max_steps)
+
+
+def classify_runs(res, tol=1e-3) -> np.ndarray:
+    """The class of every run of a BatchResult (int8: CONVERGED, NOT_CONVERGED, UNDECIDED), from its last sample.
+
+    Examples
+    --------
+    >>> from lkverify.proofs.somov.equations import P
+    >>> res = integrate_runs(P.resolve({}), [[0.05, 0.9], [0, 0], [0, 0]], [[0.0, 0.4], [0, 0], [0, 0]], t_end=300.0)
+    >>> classify_runs(res).tolist(), classify_runs(res, tol=1e-30).tolist()    # near 0: converged; far out: not
+    ([1, 0], [0, 0])
+    """
+    out = np.full(res.outcome.shape, UNDECIDED, dtype=np.int8)
+    last = res.y[:, -1]
+    near = (np.linalg.norm(last[:, res.layout["sigma"]], axis=1) < tol) & \
+        (np.linalg.norm(last[:, res.layout["omega"]], axis=1) < tol)
+    ends = np.array([o is Outcome.SUCCESS for o in res.outcomes])
+    out[ends & near] = CONVERGED
+    out[ends & ~near] = NOT_CONVERGED
+    out[np.array([o is Outcome.DIVERGED for o in res.outcomes], dtype=bool)] = NOT_CONVERGED
+    return out
+
+
 @dataclasses.dataclass(frozen=True)
 class GridRuns:
-    """Converged or not at each (|σ0|, ‖ω0‖) grid point (all sampled directions must converge)."""
+    """The class of each (|σ0|, ‖ω0‖) grid point (all sampled directions must converge)."""
 
     s: np.ndarray
     w: np.ndarray
-    converged: np.ndarray  # (len(s), len(w)) bool
+    classes: np.ndarray  # (len(s), len(w)) int8: CONVERGED, NOT_CONVERGED, UNDECIDED
     t_end: float
-    dt: float
+    rtol: float
+    atol: float
     directions: int
 
+    @property
+    def converged(self) -> np.ndarray:
+        """(len(s), len(w)) bool: every direction pair converged."""
+        return self.classes == CONVERGED
 
-def run_points(values, s_pts, w_pts, *, t_end, dt, tol=1e-3, directions=DIRECTIONS) -> np.ndarray:
-    """Converged (bool per point) from |σ0| = s_pts, ‖ω0‖ = w_pts, every direction pair converging."""
+    @property
+    def undecided(self) -> np.ndarray:
+        """(len(s), len(w)) bool: no direction pair failed, one ran out of steps."""
+        return self.classes == UNDECIDED
+
+
+def run_points(values, s_pts, w_pts, *, t_end, rtol=RTOL, atol=ATOL, tol=1e-3, directions=DIRECTIONS,
+               max_steps=MAX_STEPS, system=closed_loop) -> np.ndarray:
+    """The class (int8 per point) from |σ0| = s_pts, ‖ω0‖ = w_pts over all direction pairs.
+
+    Examples
+    --------
+    >>> from lkverify.proofs.somov.equations import P
+    >>> run_points(P.resolve({}), [0.05, 0.9], [0.0, 0.4], t_end=300.0).tolist()
+    [1, 0]
+    """
     s_pts, w_pts = np.asarray(s_pts, float).ravel(), np.asarray(w_pts, float).ravel()
     s0 = np.hstack([np.outer(es, s_pts) for es, _ in directions])
     w0 = np.hstack([np.outer(ew, w_pts) for _, ew in directions])
-    s, w, _ = integrate_batch(values, s0, w0, t_end=t_end, dt=dt)
-    ok = (np.linalg.norm(s, axis=0) < tol) & (np.linalg.norm(w, axis=0) < tol)
-    return ok.reshape(len(directions), len(s_pts)).all(axis=0)
+    res = integrate_runs(values, s0, w0, t_end=t_end, rtol=rtol, atol=atol, max_steps=max_steps, system=system)
+    runs = classify_runs(res, tol).reshape(len(directions), len(s_pts))
+    out = np.where((runs == CONVERGED).all(axis=0), CONVERGED, UNDECIDED).astype(np.int8)
+    out[(runs == NOT_CONVERGED).any(axis=0)] = NOT_CONVERGED
+    return out
 
 
-def run_grid(values, s_values, w_values, *, t_end, dt, tol=1e-3, directions=DIRECTIONS) -> GridRuns:
-    """:func:`run_points` on the grid s_values × w_values."""
+def run_grid(values, s_values, w_values, *, t_end, rtol=RTOL, atol=ATOL, tol=1e-3, directions=DIRECTIONS,
+             max_steps=MAX_STEPS, system=closed_loop) -> GridRuns:
+    """:func:`run_points` on the grid s_values × w_values.
+
+    Examples
+    --------
+    >>> from lkverify.proofs.somov.equations import P
+    >>> g = run_grid(P.resolve({}), [0.0, 0.9], [0.0, 0.4], t_end=300.0)
+    >>> g.classes.tolist(), int(g.converged.sum()), bool(g.undecided.any())
+    ([[1, 0], [1, 0]], 2, False)
+    """
     S, Wg = np.meshgrid(np.asarray(s_values, float), np.asarray(w_values, float), indexing="ij")
-    ok = run_points(values, S, Wg, t_end=t_end, dt=dt, tol=tol, directions=directions).reshape(S.shape)
-    return GridRuns(np.asarray(s_values, float), np.asarray(w_values, float), ok, float(t_end), float(dt),
-                    len(directions))
+    cls = run_points(values, S, Wg, t_end=t_end, rtol=rtol, atol=atol, tol=tol, directions=directions,
+                     max_steps=max_steps, system=system).reshape(S.shape)
+    return GridRuns(np.asarray(s_values, float), np.asarray(w_values, float), cls, float(t_end), float(rtol),
+                    float(atol), len(directions))

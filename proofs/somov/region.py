@@ -36,7 +36,7 @@ from lkverify import Check, Report, Result, Status
 
 from .comparison import channel_form, majorant, majorant_steps
 from .equations import PAPER, P
-from .grid import run_grid, run_points
+from .grid import ATOL, CONVERGED, NOT_CONVERGED, RTOL, run_grid, run_points
 from .norm_steps import chain_status, inequality_step
 
 __all__ = ["CertifiedRegion", "certified_region", "check_radius", "region", "RegionConstants", "W_RANGE"]
@@ -176,8 +176,9 @@ class RegionConstants:
 
     goals = ["default"]
 
-    def __init__(self, n_s=15, n_w=15, t_end=300.0, dt=1.0, n_boundary=N_BOUNDARY):
-        self.n_s, self.n_w, self.t_end, self.dt, self.n_boundary = n_s, n_w, t_end, dt, n_boundary
+    def __init__(self, n_s=15, n_w=15, t_end=300.0, rtol=RTOL, atol=ATOL, n_boundary=N_BOUNDARY):
+        self.n_s, self.n_w, self.t_end, self.n_boundary = n_s, n_w, t_end, n_boundary
+        self.rtol, self.atol = rtol, atol
 
     def run(self, item_name, values, shown, *, budget=150.0, progress=None, goal=None):
         rows = _region_rows(values)
@@ -186,15 +187,12 @@ class RegionConstants:
         w = np.linspace(0.0, W_RANGE * float(reg.w_max), self.n_w)
         if progress:
             progress(f"{item_name}: {self.n_s}×{self.n_w} initial states × 4 directions to t = {self.t_end:g}")
-        grid = run_grid(values, s, w, t_end=self.t_end, dt=self.dt)
+        grid = run_grid(values, s, w, t_end=self.t_end, rtol=self.rtol, atol=self.atol)
         rows += grid_rows(reg, grid)
         sb = np.linspace(0.0, 0.999 * float(reg.s_max), self.n_boundary)
         wb = 0.999 * reg.w_boundary(sb)
-        ok = run_points(values, sb, wb, t_end=self.t_end, dt=self.dt)
-        rows.append(Result("simulation", "region boundary converges", Status.SIMULATED if ok.all() else Status.FAILED,
-                           {"points": self.n_boundary, "not_converged": int((~ok).sum())},
-                           f"{int(ok.sum())} of {self.n_boundary} initial data just inside the region's boundary "
-                           f"(|σ0| from 0 to {0.999 * float(reg.s_max):.3g}, 4 direction pairs each) converge"))
+        cls = run_points(values, sb, wb, t_end=self.t_end, rtol=self.rtol, atol=self.atol)
+        rows.append(boundary_row(cls, float(reg.s_max), self.t_end))
         bad = [r.name for r in rows if not r.status.holds]
         verdict = "every check holds" if not bad else f"failed: {', '.join(bad)}"
         return Report(item_name, dict(shown), tuple(rows), verdict), {"grid": grid, "region": reg, "values": values,
@@ -229,11 +227,24 @@ class RegionConstants:
 _trapezoid = getattr(np, "trapezoid", None) or getattr(np, "trapz")
 
 
+def _simulated_status(classes) -> Status:
+    """failed if a run did not converge, undecided if one ran out of steps, else simulated."""
+    if (classes == NOT_CONVERGED).any():
+        return Status.FAILED
+    return Status.SIMULATED if (classes == CONVERGED).all() else Status.UNDECIDED
+
+
+def _runs_text(grid) -> str:
+    return (f"{grid.directions} direction pairs each, DOPRI5 rtol = {grid.rtol:g}, atol = {grid.atol:g} "
+            f"to t = {grid.t_end:g}")
+
+
 def grid_rows(reg, grid) -> list:
     """Containment of the certified set in the converged grid points, and the area ratio."""
     S, Wg = np.meshgrid(grid.s, grid.w, indexing="ij")
     inside = reg.contains(S, Wg)
-    missed = inside & ~grid.converged
+    missed = inside & (grid.classes == NOT_CONVERGED)
+    open_ = inside & grid.undecided
     ds, dw = grid.s[1] - grid.s[0], grid.w[1] - grid.w[0]
     fine_s = np.linspace(0, grid.s[-1], 801)
     cert_area = float(_trapezoid(np.minimum(reg.w_boundary(fine_s), grid.w[-1]), fine_s))
@@ -243,17 +254,32 @@ def grid_rows(reg, grid) -> list:
     sim_area = float(np.sum(grid.converged * np.outer(ws, ww)))
     total = float(grid.s[-1] * grid.w[-1])
     ratio = cert_area / sim_area if sim_area else float("nan")
-    rows = [Result("simulation", "region inside the converged grid", Status.FAILED if missed.any() else
-                   Status.SIMULATED, {"grid_points_certified": int(inside.sum()), "missed": int(missed.sum())},
-                   f"{int(inside.sum())} of the {inside.size} grid points lie in the region and every one of "
-                   f"them converged (4 direction pairs each, RK4 dt = {grid.dt:g} to t = {grid.t_end:g})"
-                   if not missed.any() else f"{int(missed.sum())} grid points in the region did NOT converge"),
+    status = _simulated_status(grid.classes[inside])
+    detail = {Status.SIMULATED: f"{int(inside.sum())} of the {inside.size} grid points lie in the region and every "
+                                f"one of them converged ({_runs_text(grid)})",
+              Status.FAILED: f"{int(missed.sum())} grid points in the region did NOT converge ({_runs_text(grid)})",
+              Status.UNDECIDED: f"{int(open_.sum())} grid points in the region ran out of steps before t = "
+                                f"{grid.t_end:g}, none failed ({_runs_text(grid)})"}[status]
+    rows = [Result("simulation", "region inside the converged grid", status,
+                   {"grid_points_certified": int(inside.sum()), "missed": int(missed.sum()),
+                    "undecided": int(open_.sum()), "rtol": grid.rtol, "atol": grid.atol}, detail),
             Result("simulation", "area ratio region/converged", Status.ESTIMATED,
                    {"ratio": ratio, "certified_area": cert_area, "converged_area": sim_area, "rectangle": total,
-                    "converged_fraction": float(grid.converged.mean())},
+                    "converged_fraction": float(grid.converged.mean()), "undecided_points": int(grid.undecided.sum())},
                    f"in |σ0| ∈ [0, 1], ‖ω0‖ ∈ [0, {grid.w[-1]:.3g}]: region area {cert_area:.3g}, converged "
                    f"{sim_area:.3g} ({100 * grid.converged.mean():.0f} % of the grid points): ratio {ratio:.3g}")]
     return rows
+
+
+def boundary_row(classes, s_max: float, t_end: float) -> Result:
+    """The runs from just inside the region's boundary (classes of :func:`.grid.run_points`) must converge."""
+    n = int(classes.size)
+    conv, failed = int((classes == CONVERGED).sum()), int((classes == NOT_CONVERGED).sum())
+    return Result("simulation", "region boundary converges", _simulated_status(classes),
+                  {"points": n, "not_converged": n - conv, "failed": failed},
+                  f"{conv} of {n} initial data just inside the region's boundary (|σ0| from 0 to "
+                  f"{0.999 * s_max:.3g}, 4 direction pairs each) converge by t = {t_end:g}"
+                  f"{f', {failed} do not' if failed else ''}{f', {n - conv - failed} ran out of steps' if n - conv - failed else ''}")
 
 
 def _check(v) -> list:

@@ -245,13 +245,13 @@ def test_grid_rows_detect_a_region_too_large():
     R = reg.certified_region(DEFAULTS)
     big = reg.CertifiedRegion(R.r0, R.rho * 100, R.Q)
     grid = importlib.import_module("lkverify.proofs.somov.grid").GridRuns(
-        np.linspace(0, 1, 3), np.linspace(0, 0.3, 3), np.array([[1, 1, 0], [1, 1, 0], [1, 0, 0]], bool), 300.0, 1.0, 4)
+        np.linspace(0, 1, 3), np.linspace(0, 0.3, 3), np.array([[1, 1, 0], [1, 1, 0], [1, 0, 0]], np.int8), 300.0,
+        1e-8, 1e-10, 4)
     rows = _status(reg.grid_rows(big, grid))
     assert rows["region inside the converged grid"] is Status.FAILED
     assert _status(reg.grid_rows(R, grid))["region inside the converged grid"] is Status.SIMULATED
 
 
-@pytest.mark.slow
 def test_region_against_simulated_grid():
     job = reg.RegionConstants(n_s=6, n_w=6)
     rep, extra = job.run("somov.region", DEFAULTS, {})
