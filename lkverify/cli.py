@@ -126,7 +126,8 @@ def _build_parser(*, lazy: bool = False) -> argparse.ArgumentParser:
     _add_no_cache(rp)
     cp = sub.add_parser("cache", help="the proof cache of decided reports: where it is and its size (info), or "
                         "empty it (clear)")
-    cp.add_argument("action", choices=("info", "clear"))
+    cp.add_argument("action", choices=("info", "clear"),
+                    help="info: the cache's directory, entries and size; clear: delete every entry")
     cp.add_argument("--json", action="store_true", help="print one JSON object")
     _add_check(sub)
     _add_simulate(sub)
