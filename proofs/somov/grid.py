@@ -23,9 +23,7 @@ import dataclasses
 
 import numpy as np
 
-from lkverify.simulate.batch import integrate
-from lkverify.simulate.family import compile_family
-from lkverify.simulate.solver import Outcome
+from lkverify.simulate import Outcome, compile_family
 
 from .equations import closed_loop
 
@@ -65,9 +63,9 @@ def integrate_runs(values, s0, w0, *, t_end, t_eval=None, rtol=RTOL, atol=ATOL, 
     s0, w0 = np.atleast_2d(np.asarray(s0, dtype=float)), np.atleast_2d(np.asarray(w0, dtype=float))
     fam = compile_family(system, dict(values), grid=())
     histories = [{"sigma": s0[:, i], "omega": w0[:, i]} for i in range(s0.shape[1])]
-    return integrate(fam, np.zeros((len(histories), 0)), histories, t_end=float(t_end),
-                     t_eval=[float(t_end)] if t_eval is None else t_eval, rtol=rtol, atol=atol,
-                     divergence_bound=blowup, max_steps=max_steps)
+    return fam.integrate(np.zeros((len(histories), 0)), histories, t_end=float(t_end),
+                         t_eval=[float(t_end)] if t_eval is None else t_eval, rtol=rtol, atol=atol,
+                         divergence_bound=blowup, max_steps=max_steps)
 
 
 def classify_runs(res, tol=1e-3) -> np.ndarray:

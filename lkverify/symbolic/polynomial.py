@@ -1,18 +1,26 @@
-"""Exact derivations for paper 004: V̇ along a closed loop, and printed formulas compared term by term.
+"""Polynomial identities decided in ℚ[x]: the fast path of lkverify's one identity engine.
 
-The closed loops of paper 004 have no delay and no constraint is needed by its identities
-(they hold for every value of the states, not only on ‖sᵢ‖ = 1), so an identity is decided
-here by polynomial arithmetic on the state values: every ``x(t)`` and every ``ω_d(t)``,
-``ω̇_d(t)`` becomes a plain symbol, V̇ = Σ ∂V/∂xᵢ·ẋᵢ + Σ ∂V/∂ω_d·ω̇_d is formed and the
-difference with the printed formula is expanded.  Zero means ``exact`` (for every state,
-every reference motion ω_d(t) and the parameter values of the run, which may themselves be
-symbols).  A non-zero difference is shown term by term — which printed terms the derivation
-confirms, which it does not, and the residue — and refuted at an exact rational witness
-(unit vectors and the triad from a rational Cayley rotation, so the witness lies on the
-state manifold).  Values that went through floating point are never ``exact``: such a
-check is ``undecided``.
+An identity whose two sides are polynomials in plain symbols (state values, reference signals,
+parameters) is decided by sparse polynomial arithmetic over the rationals (``sympy.polys.rings``):
+the difference is expanded once; zero means ``exact`` for every value of every symbol (so also on
+any constraint manifold), a non-zero difference is shown term by term and refuted at an exact
+rational witness (unit vectors and a triad from a rational Cayley rotation, so the witness lies
+on the state manifold).  Values that went through floating point are never ``exact``.
 
-These are the same System objects the simulator integrates (:mod:`.example`).
+:func:`~lkverify.symbolic.identity.check_identity` (every ``IdentityClaim`` and
+``DerivativeClaim``) tries :func:`zero_difference` first, on the canonical atoms of its terms
+and without the constraints: a zero there proves the identity before any Gröbner reduction.  The
+closed loops of paper 004 (no delay; identities that hold for every state value, not only on
+‖sᵢ‖ = 1) call :func:`compare_polynomials` directly, with V̇ formed by :func:`time_derivative`.
+
+Examples
+--------
+>>> x, y = sympy.symbols("x y", real=True)
+>>> str(compare_polynomials("square", [("(x+y)²", (x + y) ** 2)], [("x²+2xy+y²", x**2 + 2*x*y + y**2)]).status)
+'exact'
+>>> r = compare_polynomials("square", [("(x+y)²", (x + y) ** 2)], [("x²+y²", x**2 + y**2)])
+>>> str(r.status), r.value["residue"]
+('failed', '2*x*y')
 """
 
 from __future__ import annotations
@@ -25,18 +33,33 @@ from sympy.core.function import AppliedUndef
 from sympy.polys.domains import QQ
 from sympy.polys.rings import PolyElement, ring
 
-from lkverify import Result, Status
+from ..declare.symbols import t
+from ..errors import UnsupportedInput
+from ..report.results import Result
+from ..status import Status
 
-__all__ = ["plain", "derivative", "compare", "cayley", "witness_point", "poly_ring", "to_ring"]
+__all__ = ["cayley", "compare_polynomials", "plain", "poly_ring", "time_derivative", "to_ring", "witness_point",
+           "zero_difference"]
 
 
 def _replacement(expr) -> dict:
+    """x(t) → x, d/dt x(t) → x_dot; a value at another argument (x(t − τ), x(0)) is refused.
+
+    Plain symbols name a function's value at t only: x(t) and x(t − τ) would become one symbol
+    and a false identity between them would be proved.
+    """
     rep = {}
     for d in expr.atoms(sympy.Derivative):
         f = d.expr
         if isinstance(f, AppliedUndef):
+            if f.args != (t,) or d.variables != (t,):
+                raise UnsupportedInput(f"polynomial identities: expected d/dt of a function of t, got {d}; an identity "
+                                       f"with delayed or other arguments goes through check_identity")
             rep[d] = sympy.Symbol(f"{f.func.__name__}_dot", real=True)
     for f in expr.atoms(AppliedUndef):
+        if f.args != (t,):
+            raise UnsupportedInput(f"polynomial identities: expected functions of t only, got {f}; an identity "
+                                   f"with delayed or other arguments goes through check_identity")
         rep.setdefault(f, sympy.Symbol(f.func.__name__, real=True))
     return rep
 
@@ -50,6 +73,10 @@ def plain(expr):
     >>> f = sympy.Function("f", real=True)
     >>> plain(f(t) ** 2 + f(t).diff(t))
     f**2 + f_dot
+    >>> plain(f(t) - f(t - 1))
+    Traceback (most recent call last):
+        ...
+    lkverify.errors.UnsupportedInput: polynomial identities: expected functions of t only, got f(t - 1); an identity with delayed or other arguments goes through check_identity
     """
     expr = sympy.sympify(expr)
     rep = _replacement(expr)
@@ -57,12 +84,20 @@ def plain(expr):
     return expr.xreplace(derivs).xreplace({k: v for k, v in rep.items() if k not in derivs})
 
 
-def derivative(V, system, substitution=None):
+def time_derivative(V, system, substitution=None):
     """V̇ of the scalar ``V`` (an expression in the states at t) along ``system``, in plain symbols.
 
     Chain rule: Σ ∂V/∂xᵢ ẋᵢ over the state components, plus ∂V/∂(coefficient)·(its derivative)
     for every time-varying coefficient (ω_d(t)); ``substitution`` (parameter values) is applied
     to V and to the right-hand sides first.
+
+    Examples
+    --------
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
+    >>> P = Parameters(); x = Vector("x", 1)
+    >>> sys = System([Equation(x, [Term(-x(t)[0])])], parameters=P)
+    >>> time_derivative(x(t)[0] ** 2, sys)
+    -2*x_1**2
     """
     sub = dict(substitution or {})
     Vs = sympy.sympify(V).xreplace(sub) if sub else sympy.sympify(V)
@@ -104,7 +139,15 @@ def cayley(k):
 
 def witness_point(expr, *, seed=0, frame=("s1", "s2", "s3")):
     """An exact rational point for the symbols of ``expr``: the triad s1, s2, s3 from a Cayley rotation,
-    every other symbol a small random rational."""
+    every other symbol a small random rational.
+
+    Examples
+    --------
+    >>> s = sympy.symbols("s1_x s1_y s1_z", real=True); k = sympy.Symbol("k")
+    >>> p = witness_point(sum(s) + k)
+    >>> sum(p[c] ** 2 for c in s), p[k].is_Rational
+    (1, True)
+    """
     rng = random.Random(seed)
     R = cayley([sympy.Rational(rng.randint(-4, 4), 5) for _ in range(3)])
     point = {}
@@ -129,7 +172,14 @@ def _show(p, n=160):
 
 
 def poly_ring(exprs, extra=()):
-    """The polynomial ring QQ[symbols of ``exprs``] (sparse, fast arithmetic), and the ring's generators by symbol."""
+    """The polynomial ring QQ[symbols of ``exprs``] (sparse, fast arithmetic).
+
+    Examples
+    --------
+    >>> x, y = sympy.symbols("x y")
+    >>> R = poly_ring([x * y + 1]); R.symbols, to_ring(R, (x + 1) * y) == to_ring(R, x * y + y)
+    ((x, y), True)
+    """
     syms = set(extra)
     for x in exprs:
         if isinstance(x, PolyElement):
@@ -142,13 +192,13 @@ def poly_ring(exprs, extra=()):
 
 
 def to_ring(R, x):
-    """``x`` (an expression or an element of another ring over the same symbols) as an element of R."""
+    """``x`` (an expression or an element of another ring over the same symbols) as an element of R (see :func:`poly_ring`)."""
     if isinstance(x, PolyElement):
         return x if x.ring == R else R.from_expr(x.as_expr())
     return R.from_expr(sympy.sympify(x))
 
 
-def compare(name, printed, derived, *, kind="identity", reference="", R=None):
+def compare_polynomials(name, printed, derived, *, kind="identity", reference="", R=None):
     """``Σ printed == Σ derived``, exact or refuted, with the term-by-term report.
 
     Parameters
@@ -205,3 +255,30 @@ def compare(name, printed, derived, *, kind="identity", reference="", R=None):
     status = Status.FAILED if value != 0 else Status.UNDECIDED
     return Result(kind, name, status, {"terms": terms, "residue": _show(residue, 400), "witness_value": str(value),
                                        "witness": {str(k): str(v) for k, v in point.items()}}, detail)
+
+
+def zero_difference(claimed, reference) -> bool:
+    """True when Σ claimed − Σ reference is the zero polynomial over ℚ in the symbols that occur.
+
+    The expressions must be polynomial in their free symbols with rational coefficients (e.g. the
+    canonical atoms of :class:`~lkverify.symbolic.canonical.Canonicalizer`); anything else (a float,
+    a non-polynomial term) gives False, never a wrong True.
+
+    Examples
+    --------
+    >>> x, y = sympy.symbols("x y")
+    >>> zero_difference([(x - y) * (x + y)], [x**2, -y**2]), zero_difference([x * y], [y * x + sympy.Rational(1, 10**30)])
+    (True, False)
+    >>> zero_difference([sympy.sqrt(x)], [sympy.sqrt(x)]), zero_difference([x * 1.0], [x])   # not polynomials: no claim
+    (False, False)
+    """
+    exprs = [sympy.sympify(e) for e in (*claimed, *reference)]
+    if any(_has_float(e) for e in exprs):
+        return False
+    try:
+        R = poly_ring(exprs)
+        total = sum((to_ring(R, e) for e in exprs[: len(claimed)]), R.zero) - \
+            sum((to_ring(R, e) for e in exprs[len(claimed):]), R.zero)
+    except (sympy.polys.polyerrors.PolynomialError, ValueError, TypeError, sympy.CoercionFailed):
+        return False
+    return total == 0
