@@ -217,6 +217,13 @@ def compare_polynomials(name, printed, derived, *, kind="identity", reference=""
         ``exact`` when the difference is the zero polynomial, ``failed`` with the differing
         terms and an exact witness otherwise, ``undecided`` when floating-point values make a
         non-zero residue inconclusive.
+
+    Examples
+    --------
+    >>> x, y = sympy.symbols("x y", real=True)
+    >>> r = compare_polynomials("(2.9)", [("−x²", -x**2), ("−2xy", -2*x*y)], [("−(x+y)²", -(x + y)**2)])
+    >>> str(r.status), r.value["residue"]      # the printed form dropped −y²
+    ('failed', 'y**2')
     """
     everything = [x for _, x in list(printed) + list(derived)]
     if any(not isinstance(x, PolyElement) and _has_float(x) for x in everything):
