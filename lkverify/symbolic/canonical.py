@@ -335,12 +335,15 @@ class Canonicalizer:
         p = ring.from_expr(a).rem(self._groebner(ring, relations))
         return self.restore(p.as_expr())
 
-    def normal_forms(self, exprs: Sequence) -> "NormalForms":
+    def normal_forms(self, exprs: Sequence, *, reduce: bool = True) -> "NormalForms":
         """Normal forms of several expressions as polynomials of one ring.
 
         Two expressions are equal on the constraint manifold when their normal
         forms are equal (the converse holds when no relation between atoms is
-        missing).
+        missing).  With ``reduce=False`` the polynomials in the canonical atoms are
+        returned unreduced (no constraint, no relation of inverses): equal ones are
+        equal everywhere, unequal ones may still agree on the manifold.  The atoms
+        are memoised, so a second call with ``reduce=True`` atomizes nothing again.
         """
         self._scan_powers(exprs)
         atomized = [self.atomize(e) for e in exprs]
@@ -348,9 +351,11 @@ class Canonicalizer:
         gens: set = set()
         for a in atomized:
             gens |= a.free_symbols
-        relations, gens = self._relations(gens)
+        relations = []
+        if reduce:
+            relations, gens = self._relations(gens)
         ring = PolyRing(_sorted(gens) or (sympy.Dummy("one"),), sympy.QQ, lex)
-        gb = self._groebner(ring, relations)
+        gb = self._groebner(ring, relations) if relations else []
         polys = []
         for a in atomized:
             self.deadline.check()

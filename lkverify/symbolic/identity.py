@@ -223,12 +223,13 @@ def check_identity(claimed: Sequence[Term], reference: Sequence[Term], *, name: 
             # 2. exact normal forms (also needed for the term-by-term report): the fast path first, the
             #    difference as a polynomial in the canonical atoms without the constraints (zero there is
             #    zero on every manifold); the reduction modulo the constraints only when that is not zero
-            nf, total = _difference(claimed, all_terms, None, deadline)
+            canon = Canonicalizer(constraints, deadline=deadline)
+            nf, total = _difference(canon, claimed, all_terms, reduce=False)
             exact_zero = total == 0
             how = "as a polynomial, no constraint needed"
-            if not exact_zero and constraints is not None:
+            if not exact_zero:
                 how = "modulo the constraints"
-                nf, total = _difference(claimed, all_terms, constraints, deadline)
+                nf, total = _difference(canon, claimed, all_terms, reduce=True)
                 exact_zero = total == 0
             # 3. the other witnesses only where the exact reduction did not prove the identity (the same
             #    random stream: the witnesses are those of an all-numeric-first check)
@@ -256,9 +257,9 @@ def check_identity(claimed: Sequence[Term], reference: Sequence[Term], *, name: 
     return dataclasses.replace(result, confirmed=confirmed)
 
 
-def _difference(claimed, all_terms, constraints, deadline):
-    """The normal forms of the terms and Σ claimed − Σ derived among them (modulo ``constraints`` if given)."""
-    nf = Canonicalizer(constraints, deadline=deadline).normal_forms([term.expr for term in all_terms])
+def _difference(canon, claimed, all_terms, *, reduce):
+    """The normal forms of the terms and Σ claimed − Σ derived among them (reduced modulo the relations or not)."""
+    nf = canon.normal_forms([term.expr for term in all_terms], reduce=reduce)
     return nf, sum(nf.polys[: len(claimed)], nf.ring.zero) - sum(nf.polys[len(claimed):], nf.ring.zero)
 
 

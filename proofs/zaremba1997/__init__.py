@@ -14,9 +14,9 @@ The paper prints no numerical example: the catalogued instance is documented in
 ⅓ sin(t/3))).
 
 Modules: :mod:`.equations` (parameters, states, Y, the errors (2.1), the closed loops),
-(exact V̇ and the term-by-term comparisons: :mod:`lkverify.symbolic.polynomial`), :mod:`.parametrisation` ((1.5), (1.6),
-(2.1), Lemmas 2, 3), :mod:`.theorem1`, :mod:`.example210`, :mod:`.theorem2`, :mod:`.example313`,
-:mod:`.excitation` ((3.5) β1, β2), :mod:`.example` (the simulations).
+:mod:`.parametrisation` ((1.5), (1.6), (2.1), Lemmas 2, 3), :mod:`.theorem1`, :mod:`.example210`,
+:mod:`.theorem2`, :mod:`.example313`, :mod:`.excitation` ((3.5) β1, β2), :mod:`.example` (the
+simulations); the exact V̇ and the term-by-term comparisons come from :mod:`lkverify.symbolic.polynomial`.
 """
 
 from .equations import PAPER, P, system1, system2, closed_loop2, Y

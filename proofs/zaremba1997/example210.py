@@ -19,7 +19,7 @@ import sympy
 
 from lkverify import Check, cross, t
 
-from lkverify.symbolic.polynomial import compare_polynomials, plain
+from lkverify.symbolic.polynomial import compare_polynomials as compare, plain
 from .equations import PAPER, EDOT, Kd, Lam, P, Y, e, omega, omega_r, omega_r_dot, theta_r, v, wd
 
 __all__ = ["example210", "control_27", "printed_210", "example210_results"]
@@ -55,7 +55,7 @@ def example210_results(v, printed=None, *, name="(2.10) as printed"):
     for i in range(3):
         p = [(lab, plain(_zero_reference(vec[i]).xreplace(sub))) for lab, vec in printed]
         d = [(lab, plain(_zero_reference(vec[i]).xreplace(sub))) for lab, vec in u]
-        out.append(compare_polynomials(f"{name}, component {i + 1}", p, d, reference=name))
+        out.append(compare(f"{name}, component {i + 1}", p, d, reference=name))
     return out
 
 

@@ -19,7 +19,7 @@ import sympy
 
 from lkverify import Check, Result, Status, cross, dot
 
-from lkverify.symbolic.polynomial import compare_polynomials
+from lkverify.symbolic.polynomial import compare_polynomials as compare
 from .equations import PAPER, Kp, Lam, P, Y, alpha, composite_laws, lam_c
 
 __all__ = ["example313", "control_313_results", "region_314", "region_fraction", "LAMBDAS"]
@@ -46,7 +46,7 @@ def control_313_results(values, printed_Ke=None):
     printed = [("M_rω̇_d", M_r * wdd), ("ω_d×M_rω", cross(wd_, M_r * w)), ("−K_e e", -Ke * e_), ("−K_vω_e", -Kv * we),
                ("−ΛY(ω, e, ė)θ_r", -L * Y(w, e_, ed) * th)]
     u = law["u"].xreplace(sub)
-    return [compare_polynomials(f"(3.13), component {i + 1}", [(lab, x[i]) for lab, x in printed],
+    return [compare(f"(3.13), component {i + 1}", [(lab, x[i]) for lab, x in printed],
                     [("Y_cθ_r − K_pe − αv (3.2)", u[i])], reference="(3.13)") for i in range(3)]
 
 
@@ -59,7 +59,7 @@ def region_314(values, printed_threshold=None):
     s, c = _vec("s0"), _vec("c0")
     x = sympy.Symbol("x", real=True)
     L = sympy.sympify(values["Lam"])
-    out = [compare_polynomials("‖s0 × c0‖² = ‖s0‖²‖c0‖² − (s0·c0)² (Lagrange)", [("‖s0×c0‖²", dot(cross(s, c), cross(s, c)))],
+    out = [compare("‖s0 × c0‖² = ‖s0‖²‖c0‖² − (s0·c0)² (Lagrange)", [("‖s0×c0‖²", dot(cross(s, c), cross(s, c)))],
                    [("‖s0‖²‖c0‖²", dot(s, s) * dot(c, c)), ("−(s0·c0)²", -dot(s, c) ** 2)], reference="Lagrange's identity")]
     lhs = (1 - x ** 2) - (2 - 2 * x) / L        # eᵀe − V_δ/Λ on unit vectors, x = s0·c0
     fac = sympy.factor(lhs)

@@ -19,7 +19,7 @@ import sympy
 
 from lkverify import Check, Result, Status, cross, dot, t
 
-from lkverify.symbolic.polynomial import compare_polynomials, time_derivative, plain
+from lkverify.symbolic.polynomial import compare_polynomials as compare, time_derivative, plain
 from .equations import (PAPER, EDOT, P, Lam, M, Y, c1, c2, c3, e, k1, k2, k3, omega, omega_e, s1, s2, s3, system1,
                         theta, v)
 
@@ -38,7 +38,7 @@ def regressor_results(Y_printed=Y) -> list:
     for i in range(3):
         printed = [(f"Y[{i + 1},{j + 1}]·θ{j + 1}", Yp[i, j] * theta[j]) for j in range(3)]
         derived = [(f"(∂/∂θ{j + 1})·θ{j + 1}", lhs[i].diff(theta[j]) * theta[j]) for j in range(3)]
-        out.append(compare_polynomials(f"(1.5) row {i + 1}: (Yθ)_{i + 1} = (Mω̇_r + ω_r×Mω)_{i + 1}", printed, derived,
+        out.append(compare(f"(1.5) row {i + 1}: (Yθ)_{i + 1} = (Mω̇_r + ω_r×Mω)_{i + 1}", printed, derived,
                            reference=f"row {i + 1} of the printed Y"))
     return out
 
@@ -53,20 +53,21 @@ def lemma_results(values) -> list:
     S, Cs, K = (s1(t), s2(t), s3(t)), (c1, c2, c3), (k1, k2, k3)
     out = []
     w = omega(t)
-    out.append(compare_polynomials("(1.6): ωᵀ(ω × Mω) = 0", [("ωᵀ(ω×Mω)", plain(dot(w, cross(w, M * w))))], [("0", 0)],
+    out.append(compare("(1.6): ωᵀ(ω × Mω) = 0", [("ωᵀ(ω×Mω)", plain(dot(w, cross(w, M * w))))], [("0", 0)],
                        reference="the gyroscopic torque's power"))
-    out.append(compare_polynomials("(2.1): v = ω_e + Λe", [(f"v_{i + 1}", plain((v[i]).xreplace(sub))) for i in range(3)],
+    out.append(compare("(2.1): v = ω_e + Λe", [(f"v_{i + 1}", plain((v[i]).xreplace(sub))) for i in range(3)],
                        [(f"(ω_e + Λe)_{i + 1}", plain((omega_e[i] + Lam * e[i]).xreplace(sub))) for i in range(3)],
                        reference="v of (2.1)"))
     for i in range(3):
-        out.append(compare_polynomials(f"ė_{i + 1} = −Σkᵢ((ω_e×sᵢ)×cᵢ)_{i + 1} along (1.4)",
+        out.append(compare(f"ė_{i + 1} = −Σkᵢ((ω_e×sᵢ)×cᵢ)_{i + 1} along (1.4)",
                            [("printed ė", plain(EDOT[i].xreplace(sub)))],
                            [("d/dt e along (1.4)", time_derivative(e[i], system1, sub))],
                            reference="ė as printed in the proof of Theorem 1"))
     W = -sum((k * dot(c, s) for k, s, c in zip(K, S, Cs)), sympy.Integer(0))
-    out.append(compare_polynomials("Lemma 2: ω_eᵀe = d/dt(−Σkᵢcᵢᵀsᵢ) along (1.4)",
+    out.append(compare("Lemma 2: ω_eᵀe = d/dt(−Σkᵢcᵢᵀsᵢ) along (1.4)",
                        [("ω_eᵀe", plain(dot(omega_e, e).xreplace(sub)))],
-                       [("d/dt(−Σkᵢcᵢᵀsᵢ)", time_derivative(W, system1, sub))], reference="the integrand of (2.4)"))
+                       [("d/dt(−Σkᵢcᵢᵀsᵢ)", time_derivative(W, system1, sub))],
+                       reference="the integrand of (2.4)"))
     gamma2 = 2 * sum(K).xreplace(sub)
     out.append(Result("bound", "Lemma 2: −Σkᵢcᵢᵀsᵢ|_0^T ≥ −γ², γ² = 2Σkᵢ", Status.EXACT, str(gamma2),
                       f"each |cᵢᵀsᵢ(τ)| ≤ 1 (unit vectors, Cauchy–Schwarz) and kᵢ > 0, so "
@@ -77,9 +78,9 @@ def lemma_results(values) -> list:
     rhs = [("‖v‖²", dot(vv, vv)), ("−2Λω_eᵀe", -2 * lam * dot(we, ee))]
     derived = [("‖ω_e‖²", dot(we, we)),
                ("‖v‖² − 2Λω_eᵀe − ‖ω_e‖² (= Λ²‖e‖²)", dot(vv, vv) - 2 * lam * dot(we, ee) - dot(we, we))]
-    out.append(compare_polynomials("Lemma 3 (2.5) as printed: ‖ω_e‖² + ‖e‖² = ‖v‖² − 2Λω_eᵀe", printed, derived,
+    out.append(compare("Lemma 3 (2.5) as printed: ‖ω_e‖² + ‖e‖² = ‖v‖² − 2Λω_eᵀe", printed, derived,
                        reference="the integrand of (2.5) as printed"))
-    out.append(compare_polynomials("Lemma 3 (2.5) derived: ‖ω_e‖² + Λ²‖e‖² = ‖v‖² − 2Λω_eᵀe",
+    out.append(compare("Lemma 3 (2.5) derived: ‖ω_e‖² + Λ²‖e‖² = ‖v‖² − 2Λω_eᵀe",
                        [("‖ω_e‖²", dot(we, we)), ("Λ²‖e‖²", lam ** 2 * dot(ee, ee))], rhs,
                        reference="the corrected integrand (Λ² on ‖e‖²)"))
     return out

@@ -20,7 +20,7 @@ import sympy
 from lkverify import Check, Result, Status, cross, dot, quad, t
 from lkverify.certify.matrices import matrix_positive_definite
 
-from lkverify.symbolic.polynomial import compare_polynomials, time_derivative, plain, poly_ring, to_ring
+from lkverify.symbolic.polynomial import compare_polynomials as compare, time_derivative, plain, poly_ring, to_ring
 from .equations import PAPER, Gamma, Kd, M, P, Y, omega, omega_r, omega_r_dot, system1, theta, theta_r, v
 
 __all__ = ["theorem1", "functional1", "theorem1_results", "hypotheses", "general_result"]
@@ -68,9 +68,9 @@ def theorem1_results(values, *, system=system1) -> list:
     first = [("vᵀ(u − ω_r×Mω − Mω̇_r)", plain(dot(v, u - cross(omega_r, M * omega(t)) - M * omega_r_dot).xreplace(sub))),
              ("θ_eᵀΓ⁻¹θ̇_e", plain((th_e.T * Ginv * theta_r_dot.xreplace(sub))[0, 0].xreplace(sub)))]
     return [
-        compare_polynomials("V̇ of (2.6): first line of the proof", first, [("V̇ derived", Vdot)],
+        compare("V̇ of (2.6): first line of the proof", first, [("V̇ derived", Vdot)],
                 reference="vᵀ(u − ω_r × N − Mω̇_r) + θ_eᵀΓ⁻¹θ̇_e"),
-        compare_polynomials("(2.9): V̇ = −vᵀK_d v", [("−vᵀK_d v", plain(-quad(v, Kd).xreplace(sub)))], [("V̇ derived", Vdot)],
+        compare("(2.9): V̇ = −vᵀK_d v", [("−vᵀK_d v", plain(-quad(v, Kd).xreplace(sub)))], [("V̇ derived", Vdot)],
                 reference="(2.9)"),
     ]
 
@@ -105,7 +105,7 @@ def general_result():
         for i in range(3):
             total += Vr.diff(g[f"{name}{i + 1}"]) * to_ring(R, rs[i])
     Vdot = reduce_det(total, to_ring(R, Gg.det()))
-    return compare_polynomials("(2.9) for every M = diag(A, B, C), K_d, Γ", [("−vᵀK_d v", -dot(vv, Kg * vv))],
+    return compare("(2.9) for every M = diag(A, B, C), K_d, Γ", [("−vᵀK_d v", -dot(vv, Kg * vv))],
                    [("V̇ derived", Vdot)], reference="(2.9), every parameter symbolic", R=R)
 
 

@@ -35,7 +35,7 @@ import sympy
 from lkverify import Check, Result, Status, cross, dot, t
 from lkverify.certify.matrices import matrix_positive_definite
 
-from lkverify.symbolic.polynomial import compare_polynomials, time_derivative, plain, poly_ring, to_ring
+from lkverify.symbolic.polynomial import compare_polynomials as compare, time_derivative, plain, poly_ring, to_ring
 from .equations import (PAPER, Kp, Lam, M, P, alpha, c1, c2, c3, composite_laws, k1, k2, k3, lam, lam1, lam_c,
                         omega_e, s1, s2, s3, system1, theta, e)
 
@@ -159,23 +159,23 @@ def theorem2_results(values):
     printed = _printed(a)
     for key, label in (("T1", "(3.7): T1 = d/dt ½vᵀMv"), ("T23", "(3.8): T2 + T3"),
                        ("T4", "(3.9) first line: T4 = d/dt ½‖η‖²")):
-        out.append(compare_polynomials(label, printed[key], [(f"{key} derived", derived[key])], reference=label.split(":")[0],
+        out.append(compare(label, printed[key], [(f"{key} derived", derived[key])], reference=label.split(":")[0],
                            R=a.R))
     lc, eta = a.q["lam_c"], a.eta
-    out.append(compare_polynomials("T4 derived: −λ_c‖η‖² − ηᵀ(v × Mω)",
+    out.append(compare("T4 derived: −λ_c‖η‖² − ηᵀ(v × Mω)",
                        [("−λ_c‖η‖²", -lc * dot(eta, eta)), ("−ηᵀ(v×Mω)", -dot(eta, cross(a.v, a.M * a.w)))],
                        [("T4 derived", derived["T4"])], reference="T4 with the gyroscopic term kept", R=a.R))
     gyro = dot(eta, cross(a.v, a.M * a.w))
-    out.append(compare_polynomials("(3.9) first line − T4 derived = ηᵀ(v × Mω)", printed["T4"],
+    out.append(compare("(3.9) first line − T4 derived = ηᵀ(v × Mω)", printed["T4"],
                        [("T4 derived", derived["T4"]), ("ηᵀ(v×Mω)", a.poly(gyro))],
                        reference="the first line of (3.9): the term −v × Mω of Mv̇ is missing", R=a.R))
     mv_e, z = a.M * a.v - a.ep, a.ph.T * a.th_e
     line2 = [("+(λ_c/2)‖η‖²", lc / 2 * dot(eta, eta)), ("−(λ_c/2)‖Mv − ε‖²", -lc / 2 * dot(mv_e, mv_e)),
              ("λ_c(Mv − ε)ᵀφᵀθ_e", lc * dot(mv_e, z)), ("−(λ_c/2)‖θ_e‖²_φφᵀ", -lc / 2 * dot(z, z))]
-    out.append(compare_polynomials("(3.9) second line = first line (as printed)", line2, printed["T4"],
+    out.append(compare("(3.9) second line = first line (as printed)", line2, printed["T4"],
                        reference="the second line of (3.9)", R=a.R))
     fixed = [("−(λ_c/2)‖η‖²", -lc / 2 * dot(eta, eta))] + line2[1:]
-    out.append(compare_polynomials("(3.9) second line with −(λ_c/2)‖η‖² = first line", fixed, printed["T4"],
+    out.append(compare("(3.9) second line with −(λ_c/2)‖η‖² = first line", fixed, printed["T4"],
                        reference="the second line of (3.9) with the sign of its first term changed", R=a.R))
     return out, a, derived, printed
 
@@ -184,7 +184,7 @@ def _vdelta_lemma(a):
     """d/dt(½V_δ) = ω_eᵀe along (1.4), at the component level (the rate the abstract loop gives V_δ)."""
     S, Cs, K = (s1(t), s2(t), s3(t)), (c1, c2, c3), (k1, k2, k3)
     Vd = sum((k * dot(c - s, c - s) for k, s, c in zip(K, S, Cs)), sympy.Integer(0))
-    return compare_polynomials("d/dt(½V_δ) = ω_eᵀe along (1.4)", [("ω_eᵀe", plain(dot(omega_e, e).xreplace(a.sub)))],
+    return compare("d/dt(½V_δ) = ω_eᵀe along (1.4)", [("ω_eᵀe", plain(dot(omega_e, e).xreplace(a.sub)))],
                    [("d/dt ½Σkᵢ(cᵢ − sᵢ)²", time_derivative(Vd / 2, system1, a.sub))],
                    reference="the rate of V_δ (the T3 of (3.8))")
 
@@ -238,7 +238,7 @@ def bound_310_results(a, derived, printed):
     mv_e = a.M * a.v - a.ep
     Q = [("α‖v‖²", al * dot(a.v, a.v)), ("−λ_cvᵀMz", -lc * dot(a.v, a.M * z)), ("(λ_c/4)‖z‖²", lc / 4 * dot(z, z)),
          ("(λ_c/2)‖Mv − ε‖²", lc / 2 * dot(mv_e, mv_e))]
-    out = [compare_polynomials("(3.10) − (3.7)–(3.9) as printed = Q(v, Mv − ε, z = φᵀθ_e)", Q,
+    out = [compare("(3.10) − (3.7)–(3.9) as printed = Q(v, Mv − ε, z = φᵀθ_e)", Q,
                    [("(3.10) − Σ printed pieces", rhs - paper)], reference="the slack of (3.10)", R=R)]
     vs, ws, zs = (sympy.Matrix(sympy.symbols(f"{n}1:4", real=True)) for n in ("qv", "qw", "qz"))
     form = al * dot(vs, vs) - lc * dot(vs, a.M * zs) + lc / 4 * dot(zs, zs) + lc / 2 * dot(ws, ws)
