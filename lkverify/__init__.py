@@ -34,7 +34,7 @@ from ._lazy import lazy_exports
 #: ``import lkverify`` (and the command line's ``--help``, ``--version``, ``list``) loads no SymPy
 _SOURCES = {
     "Check": ".catalogue.items", "Item": ".catalogue.items", "Link": ".catalogue.items",
-    "Theorem": ".catalogue.items",
+    "Theorem": ".catalogue.items", "SignalTheorem": ".catalogue.signal_theorem",
     "Hypothesis": ".certify.hypotheses", "MatrixHypothesis": ".certify.hypotheses",
     "Auto": ".certify.steps", "BoundClaim": ".certify.steps", "QuadraticForms": ".certify.steps",
     "Functional": ".declare.functional", "memory_integral": ".declare.functional",
@@ -79,7 +79,7 @@ __all__ = [
     "Accuracy", "Auto", "Block", "BoundClaim", "Budget", "QuadraticForms", "BudgetExceeded", "Check", "Deadline", "DerivativeClaim", "DerivativeResult",
     "Equation", "Frame", "Functional", "Hypothesis", "IdentityClaim", "IdentityResult", "InputError", "Item",
     "Kind", "Link", "LkverifyError", "MatrixHypothesis", "ParameterKind", "ParameterSpec", "Parameters", "Report",
-    "Result", "Status", "System", "Term", "TermDifference", "Theorem", "UnitVector", "UnsupportedInput",
+    "Result", "SignalTheorem", "Status", "System", "Term", "TermDifference", "Theorem", "UnitVector", "UnsupportedInput",
     "Vector", "check_identity", "cross", "derivative_along", "dot", "memory_integral", "norm", "norm_power",
     "norm_squared", "quad", "t", "tail_integral", "window_integral", "xi", "zeta",
     # rigid bodies (declare.rigidbody)

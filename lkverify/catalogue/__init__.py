@@ -7,15 +7,15 @@ names and titles of the catalogue's items, without importing them, are :mod:`.in
 """
 
 
-__all__ = ["Check", "Item", "Link", "ProofFile", "Theorem", "catalogue", "find_items", "load_proof_file",
-           "theorem_verdict"]
+__all__ = ["Check", "Item", "Link", "ProofFile", "SignalTheorem", "Theorem", "catalogue", "find_items",
+           "load_proof_file", "theorem_verdict"]
 
 from .._lazy import lazy_exports
 
 #: public name → the submodule that defines it, imported on first use (PEP 562): ``lkverify list`` reads the
 #: catalogue's index (:mod:`.index`) without importing the items or SymPy
 _SOURCES = {"Check": ".items", "Item": ".items", "Link": ".items", "Theorem": ".items", "theorem_verdict": ".items",
-            "ProofFile": ".loader", "catalogue": ".loader", "find_items": ".loader", "load_proof_file": ".loader"}
+            "SignalTheorem": ".signal_theorem", "ProofFile": ".loader", "catalogue": ".loader", "find_items": ".loader", "load_proof_file": ".loader"}
 
 
 __getattr__, __dir__ = lazy_exports(__name__, _SOURCES, __all__)

@@ -111,6 +111,11 @@ def time_derivative(V, system, substitution=None):
             if dV != 0:
                 r = rhs[i].xreplace(sub) if sub else rhs[i]
                 total += dV * plain(r)
+    for d in Vs.atoms(sympy.Derivative):
+        if isinstance(d.expr, AppliedUndef) and not any(d.expr.func.__name__ == g.__name__ for s in system.states
+                                                        for g in s.functions):
+            raise UnsupportedInput(f"time_derivative: V contains {d}, the rate of a coefficient, whose own rate is "
+                                   f"not known here; write V without it or differentiate by hand")
     for f in Vs.atoms(AppliedUndef):
         name = f.func.__name__
         if any(name == g.__name__ for s in system.states for g in s.functions):

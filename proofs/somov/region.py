@@ -32,10 +32,11 @@ import dataclasses
 import numpy as np
 import sympy
 
-from lkverify import Check, Report, Result, Status
+from lkverify import Report, Result, Status
+from lkverify.catalogue.signal_theorem import SignalTheorem
 
 from .comparison import channel_form, majorant, majorant_steps
-from .equations import PAPER, P
+from .equations import PAPER, closed_loop
 from .grid import ATOL, CONVERGED, NOT_CONVERGED, RTOL, run_grid, run_points
 from .norm_steps import chain_status, inequality_step
 
@@ -282,10 +283,44 @@ def boundary_row(classes, s_max: float, t_end: float) -> Result:
                   f"{f', {failed} do not' if failed else ''}{f', {n - conv - failed} ran out of steps' if n - conv - failed else ''}")
 
 
-def _check(v) -> list:
-    return _region_rows(v)
+def _hypotheses(v) -> list:
+    return [Result("hypothesis", f"{name} > 0", Status.EXACT if sympy.sympify(v[name]) > 0 else Status.FAILED,
+                   str(v[name]), f"{name} = {v[name]}") for name in ("alpha", "beta", "a_m")]
 
 
-region = Check("region", parameters=P, checks=[_check], paper=PAPER, relevant=("alpha", "beta", "a_m"),
-               constants=RegionConstants(),
-               title="Region of attraction of (3), (11) from the comparison system (exact), against a simulated grid")
+def _derivations(v) -> list:
+    return majorant_steps(v) + _region_rows(v)
+
+
+def argument(v):
+    """The links after the comparison system: the comparison lemma on (0, ρ*), the initial data, the limits (5)."""
+    from lkverify.certify.steps import Comparison, Follows
+
+    steps = majorant_steps(v)
+    comp, missing = chain_status(steps)
+    by_name = {x.name: x.status for x in steps}
+    r, g, psi = majorant(v)
+    reg = certified_region(v)
+    phi_r = -sympy.sympify(v["alpha"]) * r + 3 * sympy.Max(0, g) / sympy.sympify(v["beta"])
+    rows = {x.name: x for x in _region_rows(v)}
+    init = rows["initial data in the region"]
+    limits = [(n, by_name.get(n, Status.UNDECIDED)) for n in
+              ("|sigma| <= ||V||", "|sigmadot| <= sqrt(k0) ||V||", "|D sigmadot|^2 = 16|sigmadot|^2/(1+|sigma|^2)^2")]
+    links = [
+        Comparison(phi_r, r, reg.rho, rests_on=(("D⁺‖V‖ ≤ φ(‖V‖) (the checked majorant steps)", comp),),
+                   name="comparison lemma: ‖V‖ < ρ* invariant, ‖V‖ → 0"),
+        Follows("initial data in the region ⇒ ‖V(t0)‖ < ρ*", ((init.name, init.status),),
+                "Q₁₁s² + 2|Q₁₂|s·y + Q₂₂y² < ρ*² bounds ‖V(t0)‖² (the initial-data step)"),
+        Follows("limits (5): σ → 0, σ̇ → 0, ω → 0", (*limits, ("‖V‖", None)),
+                "|σ| ≤ ‖V‖, |σ̇| ≤ √k0‖V‖ and ‖ω‖ = 4|σ̇|/(1 + σ²) ≤ 4|σ̇| squeeze them with ‖V‖ → 0"),
+    ]
+    return links, {}
+
+
+region = SignalTheorem(
+    "region", system=closed_loop, hypotheses=[_hypotheses], derivations=[_derivations], argument=argument,
+    paper=PAPER, relevant=("alpha", "beta", "a_m"), constants=RegionConstants(),
+    derivations_link="comparison system D⁺‖V‖ ≤ φ(‖V‖): identities and norm steps; r0, ρ*, initial data",
+    conclusion="every initial state with Q₁₁s² + 2|Q₁₂|s·y + Q₂₂y² < ρ*² is attracted: σ, σ̇, ω → 0",
+    title="Region of attraction of (3), (11) from the comparison system: the comparison lemma on (0, ρ*) "
+          "(exact), against a simulated grid")

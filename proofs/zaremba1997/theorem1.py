@@ -7,23 +7,38 @@
 
 Checked at the run's values (states and ω_d(t) symbolic): the first line of the proof
 V̇ = vᵀ(u − ω_r × N − Mω̇_r) + θ_eᵀΓ⁻¹θ̇_e (exact: vᵀ(v × Mω) = 0), and (2.9) (exact; it rests on
-(1.5): with a wrong Y it fails).  The hypotheses K_d ≻ 0, Γ ≻ 0, Λ > 0, kᵢ > 0 distinct, and
-V ≥ 0 (M ≻ 0, Γ⁻¹ ≻ 0) are exact.  The rest of the proof (v ∈ L2 ∩ L∞, Lemmas 1 and 3,
-Barbalat: e → 0, v → 0, θ_r and u bounded) is an argument about signals, not encoded: it is
-observed in :mod:`.example` (status ``simulated``).
+(1.5): with a wrong Y it fails).  The hypotheses K_d ≻ 0, Γ ≻ 0, Λ > 0, kᵢ > 0 distinct and
+ω_d, ω̇_d bounded (the theorem's L∞ programmed motion) are exact.
+
+The rest of the proof is a signal argument (:func:`argument`, the links of
+:mod:`lkverify.certify.steps.signals`, each decided along the closed loop (2.7), (2.8)):
+
+1. (2.9) with K_d ≻ 0: V nonincreasing; V = ½zᵀQz, z = (v, θ_e), Q = diag(M, Γ⁻¹) ≻ 0: v, θ_e bounded;
+2. ‖sᵢ‖ conserved by (1.4); ω = v + ω_d − Λe, θ_r = θ_e + θ: every state bounded;
+3. vᵀK_dv = −V̇: v ∈ L2; v̇ bounded: v → 0 (Lemma 1 = Barbalat);
+4. Lemma 3 as derived, ‖ω_e‖² + Λ²‖e‖² = ‖v‖² − 2Λω_eᵀe, with Lemma 2's ω_eᵀe = d/dt(−Σkᵢcᵢᵀsᵢ): e ∈ L2
+   (the printed ‖e‖² in place of Λ²‖e‖² is refuted in ``zaremba1997.parametrisation``); ė bounded:
+   e → 0; ω_e = v − Λe → 0;
+5. {e = 0} on the orthonormal triads (an invariant set of (1.4)) is four points sᵢ = ±cᵢ (a
+   zero-dimensional Gröbner basis, kᵢ distinct): the triad converges to one of them;
+6. θ_r and u are polynomials in bounded signals: bounded.
+
+The verdict is computed from these links (:class:`~lkverify.catalogue.signal_theorem.SignalTheorem`).
 """
 
 from __future__ import annotations
 
 import sympy
 
-from lkverify import Check, Result, Status, cross, dot, quad, t
+from lkverify import Result, Status, cross, dot, quad, t
+from lkverify.catalogue.signal_theorem import SignalTheorem
 from lkverify.certify.matrices import matrix_positive_definite
 
 from lkverify.symbolic.polynomial import compare_polynomials as compare, time_derivative, plain, poly_ring, to_ring
-from .equations import PAPER, Gamma, Kd, M, P, Y, omega, omega_r, omega_r_dot, system1, theta, theta_r, v
+from .equations import (PAPER, Gamma, Kd, Lam, M, P, Y, c1, c2, c3, e, k1, k2, k3, omega, omega_e, omega_r,
+                        omega_r_dot, s1, s2, s3, system1, theta, theta_r, v)
 
-__all__ = ["theorem1", "functional1", "theorem1_results", "hypotheses", "general_result"]
+__all__ = ["theorem1", "functional1", "theorem1_results", "hypotheses", "general_result", "argument"]
 
 
 def _sub(values):
@@ -109,15 +124,69 @@ def general_result():
                    [("V̇ derived", Vdot)], reference="(2.9), every parameter symbolic", R=R)
 
 
-def _check(values):
+def _hypotheses(values):
     out = hypotheses(values)
-    out.append(Result("bound", "V ≥ 0: ½vᵀMv + ½θ_eᵀΓ⁻¹θ_e (2.6)",
-                      Status.EXACT if all(r.status is Status.EXACT for r in out[1:3]) else Status.FAILED, None,
-                      "a sum of two positive-definite forms (M ≻ 0, Γ⁻¹ ≻ 0 as Γ ≻ 0), positive definite in (v, θ_e)"))
-    return out + theorem1_results(values) + [general_result()]
+    out.append(Result("hypothesis", "ω_d, ω̇_d bounded (the theorem's programmed motion)", *_reference(values)))
+    return out
 
 
-theorem1 = Check("theorem1", parameters=P, checks=[_check], paper=PAPER,
-                 relevant=("M", "k1", "k2", "k3", "Lam", "Kd", "Gamma", "c1", "c2", "c3"),
-                 title="Theorem 1: V (2.6) along (1.3), (1.4), (2.7), (2.8): V̇ = −vᵀK_d v (2.9) exact; "
-                       "the signal argument (Lemmas 1, 3) not encoded, observed in zaremba1997.example")
+def _reference(values):
+    from lkverify.certify.steps.signals import bounded_in_t
+
+    rows = [(f"{name}{'′' if k else ''}", *bounded_in_t(sympy.diff(sympy.sympify(values[name]), t, k)))
+            for name in ("wd1", "wd2", "wd3") for k in (0, 1)]
+    status = max((st for _, st, _ in rows), key=lambda s: [Status.EXACT, Status.UNDECIDED, Status.FAILED].index(s))
+    return status, None, "; ".join(f"{n}: {why}" for n, _, why in rows)
+
+
+def argument(values):
+    """The signal argument of the proof of Theorem 1 at the run's values: (links, reference signals).
+
+    (2.6), (2.9) ⇒ V nonincreasing ⇒ v, θ_e bounded; ‖sᵢ‖ conserved (1.4); so ω = v + ω_d − Λe and
+    θ_r = θ_e + θ are bounded; −V̇ = vᵀK_dv ⇒ v ∈ L2; v̇ bounded ⇒ v → 0 (Lemma 1, Barbalat);
+    ‖ω_e‖² + Λ²‖e‖² = ‖v‖² − 2Λω_eᵀe with ω_eᵀe = d/dt(−Σkᵢcᵢᵀsᵢ) (Lemmas 2, 3, corrected: Λ² on ‖e‖²)
+    ⇒ e ∈ L2; ė bounded ⇒ e → 0; ω_e = v − Λe → 0; e = 0 on the triads is four points ⇒ sᵢ → ±cᵢ;
+    θ_r, u bounded.
+    """
+    from lkverify.certify.steps import (Barbalat, BoundedSignal, BoundedStates, Conserved, Dissipation,
+                                        FiniteLimit, LevelSet, LinearLimit, SquareIntegrable)
+
+    V = functional1(values)
+    th_e = theta_r(t) - theta
+    Ginv = sympy.Matrix(values["Gamma"]).inv()
+    Q = sympy.diag(M, Ginv)
+    M_r = sympy.diag(*theta_r(t))
+    u = M_r * omega_r_dot + cross(omega_r, M_r * omega(t)) - Kd * v                    # (2.7)
+    S = (s1(t), s2(t), s3(t))
+    Cs, K = (c1, c2, c3), (k1, k2, k3)
+    storage = -2 * Lam * sum((k * dot(c, s) for k, s, c in zip(K, S, Cs)), sympy.Integer(0))
+    triad = sympy.Matrix.vstack(*S)
+    constraints = [dot(S[0], S[0]) - 1, dot(S[1], S[1]) - 1, dot(S[0], S[1]), *(S[2] - cross(S[0], S[1]))]
+    links = [
+        Dissipation(V, v, Kd, name="(2.9): V̇ = −vᵀK_dv ≤ 0"),
+        LevelSet(V, (("v", v), ("θ_e", th_e)), Q),
+        *(Conserved(f"s{i + 1}", s) for i, s in enumerate(S)),
+        BoundedStates(),
+        SquareIntegrable("v", v, Kd, storage=V),
+        Barbalat("v"),
+        SquareIntegrable("e", e, Lam ** 2 * sympy.eye(3), storage=storage, dominated=(("v", v, sympy.eye(3)),),
+                         remainder=((omega_e, sympy.eye(3)),)),
+        Barbalat("e"),
+        LinearLimit("ω_e", omega_e, {"v": 1, "e": -Lam}),
+        FiniteLimit("(s1, s2, s3)", "e", triad, constraints),
+        BoundedSignal("θ_r", theta_r(t)),
+        BoundedSignal("u", u),
+    ]
+    return links, {f"wd{i}": values[f"wd{i}"] for i in (1, 2, 3)}
+
+
+def _identities(values):
+    return theorem1_results(values) + [general_result()]
+
+
+theorem1 = SignalTheorem(
+    "theorem1", system=system1, hypotheses=[_hypotheses], derivations=[_identities], argument=argument, paper=PAPER,
+    relevant=("M", "k1", "k2", "k3", "Lam", "Kd", "Gamma", "c1", "c2", "c3", "wd1", "wd2", "wd3"),
+    conclusion="v → 0, e → 0, ω → ω_d, sᵢ → ±cᵢ, θ_r and u bounded",
+    title="Theorem 1: V (2.6) along (1.3), (1.4), (2.7), (2.8): V̇ = −vᵀK_d v (2.9), then bounded signals, "
+          "v, e ∈ L2 and Barbalat's lemma: e → 0, ω → ω_d, sᵢ → ±cᵢ")

@@ -265,3 +265,26 @@ def test_example_runs():
     ex = importlib.import_module("lkverify.proofs.somov.example").example
     rep = ex.run()
     assert rep.exit_code == 0, rep.as_text()
+
+
+def test_region_is_a_theorem_established_by_the_comparison_lemma(monkeypatch):
+    rep = reg.region.run({})
+    assert rep.exit_code == 0 and rep.verdict.startswith("established")
+    assert any(link.name.startswith("comparison lemma") and link.status is Status.EXACT for link in rep.chain)
+    bad = comp.majorant_steps(DEFAULTS) + [ns._rows_saturation(DEFAULTS, root3=1)[1]]  # a refuted norm step
+    monkeypatch.setattr(reg, "majorant_steps", lambda v: bad)
+    rep = reg.region.run({})
+    assert rep.exit_code == 1 and not rep.verdict.startswith("established")
+    lemma = next(link for link in rep.chain if link.name.startswith("comparison lemma"))
+    assert lemma.status is Status.FAILED
+
+
+def test_comparison_link_refutes_a_radius_beyond_rho_star():
+    from lkverify.certify.steps import Comparison
+
+    R = reg.certified_region(DEFAULTS)
+    r, g, _ = comp.majorant(DEFAULTS)
+    phi = -DEFAULTS["alpha"] * r + 3 * sympy.Max(0, g) / DEFAULTS["beta"]
+    ok = (("comparison system", Status.EXACT),)
+    assert Comparison(phi, r, R.rho, ok).decide().status is Status.EXACT
+    assert Comparison(phi, r, R.rho + sympy.Rational(1, 10 ** 6), ok).decide().status is Status.FAILED

@@ -201,3 +201,62 @@ def test_example_simulations():
 def test_theorem1_identity_for_every_parameter():
     r = th1.general_result()
     assert r.status is Status.EXACT and "every parameter symbolic" in r.detail
+
+
+# -- Theorem 1 as a signal argument (Barbalat) -------------------------------------------------------------------
+
+def _decide(links, system=None, values=DEFAULTS):
+    from lkverify.certify.steps.signals import Facts
+
+    facts = Facts(system or eq.system1, P.substitution({k: v for k, v in values.items() if not k.startswith("wd")}),
+                  {f"wd{i}": values[f"wd{i}"] for i in (1, 2, 3)})
+    return {link.name: link.decide(facts).status for link in links}
+
+
+def test_theorem1_established_by_the_barbalat_chain():
+    rep = theorem1.run({})
+    names = [link.name for link in rep.chain]
+    assert rep.exit_code == 0 and rep.verdict.startswith("established")
+    for expected in ("v → 0 (Barbalat)", "e → 0 (Barbalat)", "every state bounded", "v ∈ L2", "e ∈ L2", "ω_e → 0"):
+        assert expected in names
+    finite = next(r for r in rep.results if r.name.startswith("(s1, s2, s3) →"))
+    assert len(finite.value["points"]) == 4                           # sᵢ = ±cᵢ with det = 1
+
+
+def test_theorem1_chain_along_a_flipped_adaptation_law_is_refuted():
+    links, _ = th1.argument(DEFAULTS)
+    st = _decide(links, system=eq.closed_loop1(+1))
+    assert st["(2.9): V̇ = −vᵀK_dv ≤ 0"] is Status.FAILED
+    assert st["v ∈ L2"] is Status.FAILED and st["v → 0 (Barbalat)"] is not Status.EXACT
+
+
+def test_theorem1_mutated_links_are_refuted():
+    from lkverify.certify.steps.signals import LevelSet, SquareIntegrable
+
+    links, _ = th1.argument(DEFAULTS)
+    by = {type(link).__name__ + getattr(link, "signal", ""): k for k, link in enumerate(links)}
+    # Γ in place of Γ⁻¹ in the level set: V ≠ ½zᵀQz
+    lv = links[by["LevelSet"]]
+    wrong_q = sympy.diag(eq.M, sympy.Matrix(DEFAULTS["Gamma"]))
+    st = _decide([links[0], dataclasses.replace(lv, Q=wrong_q)])
+    assert st[lv.name] is Status.FAILED
+    # Lemma 3 as printed (‖e‖² in place of Λ²‖e‖²) gives a false identity at Λ = 2
+    k = by["SquareIntegrablee"]
+    printed = dataclasses.replace(links[k], K=sympy.eye(3))
+    st = _decide(links[:k] + [printed] + links[k + 1:])
+    assert st["e ∈ L2"] is Status.FAILED and st["e → 0 (Barbalat)"] is not Status.EXACT
+    assert isinstance(printed, SquareIntegrable) and isinstance(lv, LevelSet)
+    # a dropped term of V̇: the dissipation −vᵀ(K_d/2)v
+    diss = dataclasses.replace(links[0], S=eq.Kd / 2)
+    assert _decide([diss])[diss.name] is Status.FAILED
+
+
+def test_theorem1_needs_distinct_k_and_a_bounded_reference():
+    same = P.resolve({"k2": "1"}, use_defaults=True)                  # k1 = k2: {e = 0} is not finite
+    links, _ = th1.argument(same)
+    st = _decide(links, values=same)
+    assert st["(s1, s2, s3) → a point of {e = 0} (finite)"] is Status.UNDECIDED
+    rep = theorem1.run({"wd1": "t/10"})                               # an unbounded programmed motion
+    assert rep.exit_code == 1 and rep.verdict.startswith("failed: hypotheses")
+    rep = theorem1.run({"wd1": "t*sin(t)/10"})
+    assert rep.exit_code == 1 and "undecided" in rep.verdict

@@ -17,6 +17,10 @@
 * :mod:`.timevarying` — time-varying rates: :class:`TimeVaryingRate` (V̇ ≤ −α h^ν(t) V from
   steps whose coefficients are powers of h(t), and the envelope) and :class:`UpperBound`
   (a measure replaced by a bound a decided condition gives).
+* :mod:`.signals`, :mod:`.limits` — conclusions by signal arguments: a nonincreasing V bounds the signals
+  (:class:`Dissipation`, :class:`LevelSet`, :class:`Conserved`, :class:`BoundedStates`), square
+  integrability (:class:`SquareIntegrable`), Barbalat's lemma (:class:`Barbalat`), limits
+  (:class:`LinearLimit`, :class:`FiniteLimit`), the comparison lemma (:class:`Comparison`).
 * :mod:`.auto` — :class:`Auto`: a term bound whose rule lkverify finds (candidates tried in a
   documented order, the report naming the one that proved it).
 * :mod:`.chain` — :class:`TermwiseBound`: ``lhs ≤ rhs`` with lhs a sum of labelled terms
@@ -34,6 +38,8 @@ from .rules import (CauchySchwarz, Context, Equal, Nonpositive, Printed, Rayleig
                     crossed, homogeneous_field, integral_of, measured, scaled, unit)
 from .witnesses import UnsupportedClaim, Witness, search_witness
 from .timevarying import TimeVaryingRate, UpperBound, sup_in_t, sup_on
+from .signals import Barbalat, BoundedStates, Conserved, Dissipation, Facts, LevelSet, SquareIntegrable
+from .limits import BoundedSignal, Comparison, FiniteLimit, Follows, LinearLimit
 
 __all__ = ["Auto", "BoundClaim", "CauchySchwarz", "ChainResult", "Context", "Decay", "Equal", "Measure", "Nonpositive",
            "Printed", "QuadraticForms", "Rayleigh", "Region", "StepResult", "Template", "TermBound", "TermResult",
@@ -44,3 +50,5 @@ __all__ = ["Auto", "BoundClaim", "CauchySchwarz", "ChainResult", "Context", "Dec
            "Evaluated", "KernelBound", "MemoryHolder", "MemoryKrasovskii", "MemoryMeasure", "MemoryWeight",
            "memory_integral_of", "memory_measure"]
 __all__ += ["TimeVaryingRate", "UpperBound", "sup_in_t", "sup_on", "lyapunov_steps"]
+__all__ += ["Barbalat", "BoundedSignal", "BoundedStates", "Comparison", "Conserved", "Dissipation", "Facts",
+            "FiniteLimit", "Follows", "LevelSet", "LinearLimit", "SquareIntegrable"]

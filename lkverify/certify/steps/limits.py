@@ -1,0 +1,303 @@
+"""Limits and regions of a signal argument: linear combinations and finite zero sets of converging signals,
+bounded outputs, and the comparison lemma (with its exact sign test :func:`negative_on`).
+
+Split from :mod:`lkverify.certify.steps.signals`, which re-exports every name.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Mapping, Sequence
+
+import sympy
+
+from ...report.results import Result
+from ...status import Status
+from .signals import Facts, _column, _result, _weakest
+
+__all__ = ["BoundedSignal", "Comparison", "FiniteLimit", "Follows", "LinearLimit", "negative_on"]
+
+
+@dataclasses.dataclass(frozen=True)
+class LinearLimit:
+    """**g → 0**: g = Σ cⱼfⱼ identically (constants cⱼ) with every fⱼ → 0 by an earlier link.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
+    >>> X = Vector("x", 1); x = X(t)[0]; q = sympy.Matrix([x])
+    >>> facts = Facts(System([Equation(X, [Term(-x)])], parameters=Parameters()), {}, {})
+    >>> LinearLimit("2x", 2 * q, {"x": 2}).decide(facts).status.value   # rests on x → 0, not established
+    'undecided'
+    """
+
+    signal: str
+    g: object
+    combination: Mapping
+
+    @property
+    def name(self) -> str:
+        return f"{self.signal} → 0"
+
+    def decide(self, facts: Facts) -> Result:
+        from ...symbolic.polynomial import compare_polynomials
+
+        g = facts.plain(_column(self.g))
+        parts, total = [], sympy.zeros(len(g), 1)
+        for n, c in self.combination.items():
+            st, why = facts.needs(facts.converges, n, "→ 0")
+            parts.append((st, why))
+            if n in facts.converges:
+                total += sympy.sympify(c).xreplace(facts.sub) * facts.converges[n][1]
+        if any(n not in facts.converges for n in self.combination):
+            status = Status.UNDECIDED
+            detail = "; ".join(why for st, why in parts if st is Status.UNDECIDED)
+        else:
+            idents = [compare_polynomials(self.name, [("g", g[i])], [("Σcf", total[i])], reference=f"{self.signal}_{i + 1}")
+                      for i in range(len(g))]
+            same = _weakest(r.status for r in idents)
+            combo = " + ".join(f"({sympy.sympify(c).xreplace(facts.sub)})·{n}" for n, c in self.combination.items())
+            parts.append((same, f"{self.signal} = {combo} identically ({same})"))
+            status = _weakest(st for st, _ in parts)
+            detail = "; ".join(why for _, why in parts) + (f": {self.signal}(t) → 0" if status.is_proof else "")
+        facts.converges[self.signal] = (status, g)
+        return _result(self.name, status, detail)
+
+
+@dataclasses.dataclass(frozen=True)
+class BoundedSignal:
+    """**g bounded**: every component a polynomial in the bounded states and references.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
+    >>> X = Vector("x", 1); x = X(t)[0]; q = sympy.Matrix([x])
+    >>> facts = Facts(System([Equation(X, [Term(-x)])], parameters=Parameters()), {}, {})
+    >>> BoundedSignal("x²", q.applyfunc(lambda c: c**2)).decide(facts).detail
+    'x²_1 depends on the states, and no link has bounded them'
+    """
+
+    signal: str
+    g: object
+
+    @property
+    def name(self) -> str:
+        return f"{self.signal} bounded"
+
+    def decide(self, facts: Facts) -> Result:
+        g = facts.plain(_column(self.g))
+        parts = [facts.polynomial_in_states(c, f"{self.signal}_{k + 1}") for k, c in enumerate(g)]
+        status = _weakest(st for st, _ in parts)
+        facts.signals[self.signal] = g
+        facts.bounded[self.signal] = (status, "a polynomial in bounded signals")
+        bad = [why for st, why in parts if not st.is_proof]
+        return _result(self.name, status, "; ".join(bad) if bad else
+                       f"{self.signal} is a polynomial in the bounded states and references")
+
+
+def negative_on(phi, r, lo, hi) -> tuple:
+    """``(status, why)``: φ(r) < 0 for every r in the open interval (lo, hi), decided exactly.
+
+    φ is a polynomial in r with rational coefficients, possibly with Max/Min of such polynomials;
+    the interval is cut at every real root of the pieces and of their pairwise differences (exact
+    root isolation), φ is one polynomial on each sub-interval, and it must have no root in its
+    closure (except at lo) and be negative at a rational interior point.  A failure names an exact
+    point where φ ≥ 0.
+
+    >>> r = sympy.Symbol("r", nonnegative=True)
+    >>> negative_on(-r + sympy.Max(0, r**2 - sympy.Rational(1, 4)), r, 0, 1)[0].value
+    'exact'
+    >>> negative_on(-r + 3 * sympy.Max(0, r - sympy.Rational(1, 4)), r, 0, 1)[0].value   # φ(3/8) = 0
+    'failed'
+    """
+    phi = sympy.sympify(phi)
+    lo, hi = sympy.sympify(lo), sympy.sympify(hi)
+    pieces = [a for m in phi.atoms(sympy.Max, sympy.Min) for a in m.args]
+    cuts = set()
+    try:
+        for p in pieces:
+            for q in pieces:
+                d = sympy.expand(p - q)
+                if d != 0 and d.has(r):
+                    cuts |= set(sympy.Poly(d, r).real_roots())
+            if sympy.expand(p).has(r):
+                cuts |= set(sympy.Poly(p, r).real_roots())
+    except sympy.PolynomialError:
+        return Status.UNDECIDED, f"φ = {phi} is not built from polynomials in {r}"
+    cuts = sorted({c for c in cuts if (c - lo).is_positive and (hi - c).is_positive}, key=lambda c: sympy.N(c, 30))
+    ends = [lo, *cuts, hi]
+    for a, b in zip(ends, ends[1:]):
+        mid = sympy.nsimplify(sympy.Rational(sympy.N((a + b) / 2, 30)))
+        if not ((mid - a).is_positive and (b - mid).is_positive):
+            return Status.UNDECIDED, f"no rational point found in ({a}, {b})"
+        piece = phi.replace(lambda x: isinstance(x, (sympy.Max, sympy.Min)),
+                            lambda x: (max if isinstance(x, sympy.Max) else min)(x.args, key=lambda y: y.subs(r, mid)))
+        try:
+            poly = sympy.Poly(sympy.expand(piece), r)
+        except sympy.PolynomialError:
+            return Status.UNDECIDED, f"φ on ({a}, {b}) is not a polynomial in {r}"
+        value = poly.eval(mid)
+        if value >= 0:
+            return Status.FAILED, f"φ({mid}) = {value} ≥ 0 with {mid} in ({lo}, {hi}) (exact)"
+        closed_hi = b is not hi
+        for root in poly.real_roots():
+            if (root - a).is_positive and ((b - root).is_positive or (closed_hi and (b - root).is_zero)):
+                return Status.FAILED, f"φ({root}) = 0 with {root} ≈ {float(root):.6g} in ({lo}, {hi}) (exact root)"
+    shown = hi if hi.is_Rational else f"{float(hi):.6g} (exact: {hi})"
+    return Status.EXACT, f"φ < 0 on ({lo}, {shown}): {len(ends) - 1} pieces between the exact roots, no root inside"
+
+
+@dataclasses.dataclass(frozen=True)
+class Comparison:
+    """**{‖V‖ < ρ} positively invariant and ‖V‖ → 0** (the comparison lemma).
+
+    From D⁺r ≤ φ(r), r = ‖V(t)‖ (the comparison system, a link proved before and named by
+    ``rests_on``), φ continuous, φ(0) = 0 and φ < 0 on (0, ρ): r(t) ≤ the solution of ρ̇ = φ(ρ)
+    from r(t0), which decreases to 0.
+
+    Parameters
+    ----------
+    phi : expression in ``r``
+    r : Symbol
+    rho : the radius (an exact number, e.g. an algebraic root)
+    rests_on : sequence of (name, Status)
+        The links the comparison system D⁺r ≤ φ(r) is proved by.
+
+    Examples
+    --------
+    >>> r = sympy.Symbol("r", nonnegative=True)
+    >>> link = Comparison(-r + r**2, r, 1, rests_on=(("D⁺r ≤ −r + r²", Status.EXACT),))
+    >>> link.decide().status.value, Comparison(-r + r**2, r, 2, link.rests_on).decide().status.value
+    ('exact', 'failed')
+    """
+
+    phi: object
+    r: object
+    rho: object
+    rests_on: Sequence = ()
+    name: str = "comparison lemma: ‖V‖ < ρ invariant, ‖V‖ → 0"
+
+    def decide(self, facts: Facts | None = None) -> Result:
+        phi = sympy.sympify(self.phi)
+        zero = sympy.simplify(phi.subs(self.r, 0))
+        parts = [(st, f"{n} ({st})") for n, st in self.rests_on]
+        if not self.rests_on:
+            parts.append((Status.UNDECIDED, "no link proves the comparison system D⁺‖V‖ ≤ φ(‖V‖)"))
+        parts.append((Status.EXACT if zero == 0 else Status.FAILED, f"φ(0) = {zero}"))
+        st, why = negative_on(phi, self.r, 0, self.rho)
+        parts.append((st, why))
+        status = _weakest(s for s, _ in parts)
+        detail = "; ".join(w for _, w in parts)
+        if status.is_proof:
+            detail += f": every solution with ‖V(t0)‖ < ρ = {float(self.rho):.6g} keeps ‖V‖ < ρ and ‖V(t)‖ → 0"
+        if facts is not None:
+            facts.converges["‖V‖"] = (status, None)
+        return _result(self.name, status, detail, {"rho": float(self.rho), "exact": str(self.rho)}, kind="region")
+
+
+@dataclasses.dataclass(frozen=True)
+class FiniteLimit:
+    """**x(t) → one of finitely many points**: g(x) → 0 by an earlier link, x bounded, the constraints
+    c(x) = 0 invariant along the system (each ċ in the ideal of the constraints, so c ≡ 0 from c(0) = 0),
+    and the set {g = 0, c = 0} finite (a zero-dimensional Gröbner basis, its points solved exactly).
+
+    The ω-limit set of the bounded solution is nonempty and connected and, as g → 0, lies in that
+    finite set: it is one point.
+
+    Parameters
+    ----------
+    signal : str
+        The name of x in the report.
+    g : str
+        The converging signal (an earlier :class:`Barbalat` or :class:`LinearLimit`), a polynomial in x.
+    x : column
+        The state components (at t) the limit is about.
+    constraints : sequence of expressions
+        Polynomials in x vanishing on the state manifold (unit vectors, orthogonality).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
+    >>> X = Vector("x", 1); x = X(t)[0]; q = sympy.Matrix([x])
+    >>> facts = Facts(System([Equation(X, [Term(-x)])], parameters=Parameters()), {}, {})
+    >>> FiniteLimit("x", "x", q).decide(facts).status.value       # rests on x → 0
+    'undecided'
+    """
+
+    signal: str
+    g: str
+    x: object
+    constraints: Sequence = ()
+
+    @property
+    def name(self) -> str:
+        return f"{self.signal} → a point of {{{self.g} = 0}} (finite)"
+
+    def decide(self, facts: Facts) -> Result:
+        parts = [facts.needs(facts.converges, self.g, "→ 0")]
+        xs = list(facts.plain(_column(self.x)))
+        cons = [sympy.expand(facts.plain(c)) for c in self.constraints]
+        if self.g not in facts.converges or facts.converges[self.g][1] is None:
+            return _result(self.name, Status.UNDECIDED, parts[0][1])
+        g = [sympy.expand(c) for c in facts.converges[self.g][1]]
+        if any(c.free_symbols - set(xs) for c in g + cons):
+            return _result(self.name, Status.UNDECIDED, f"{self.g} or a constraint depends on more than {self.signal}")
+        parts.append((facts.states_bounded or Status.UNDECIDED, f"the states bounded ({facts.states_bounded})"))
+        if cons:
+            rates = [sympy.expand(facts.rate(c_t)) for c_t in self.constraints]
+            others = sorted(set().union(*(r.free_symbols for r in rates)) - set(xs), key=str)
+            basis = sympy.groebner(cons, *xs, *others, order="grevlex")  # the ideal of c in the larger ring
+            stuck = 0
+            for c, rate in zip(cons, rates):
+                _, rem = basis.reduce(rate)
+                if rem != 0:
+                    stuck += 1
+                    parts.append((Status.UNDECIDED, f"the constraint {c} = 0 is not shown invariant (its rate "
+                                                    f"leaves the remainder {rem} modulo the constraints)"))
+            if not stuck:
+                parts.append((Status.EXACT, f"{len(cons)} constraints invariant (each rate in their ideal): for "
+                                            f"initial data on them"))
+        full = sympy.groebner([c for c in g + cons if c != 0], *xs, order="lex")
+        if not full.is_zero_dimensional:
+            parts.append((Status.UNDECIDED, f"{{{self.g} = 0}} on the constraints is not finite"))
+            points = []
+        else:
+            points = sympy.solve_poly_system(list(full), *xs) or []
+            real = [p for p in points if all(sympy.sympify(v).is_real for v in p)]
+            parts.append((Status.EXACT, f"{{{self.g} = 0}} on the constraints has {len(real)} real points "
+                                        f"(a zero-dimensional Gröbner basis, solved exactly)"))
+            points = real
+        status = _weakest(st for st, _ in parts)
+        shown = "; ".join("(" + ", ".join(map(str, p)) + ")" for p in points[:8])
+        detail = "; ".join(w for _, w in parts) + (
+            f": the ω-limit set of {self.signal} is connected and lies in this finite set, so {self.signal}(t) "
+            f"converges to one of {shown}" if status.is_proof else "")
+        return _result(self.name, status, detail, {"points": [[str(v) for v in p] for p in points]})
+
+
+@dataclasses.dataclass(frozen=True)
+class Follows:
+    """A conclusion licensed by named steps proved before: ``licence`` states the argument, and the link
+    holds exactly as well as the weakest of ``rests_on`` ((name, Status) pairs, e.g. |σ| ≤ ‖V‖ with ‖V‖ → 0;
+    a pair (name, None) takes the status an earlier link gave the convergence of ``name``, e.g. ("V", None)
+    after a :class:`Comparison`).
+
+    >>> Follows("σ → 0", (("|σ| ≤ ‖V‖", Status.EXACT), ("‖V‖ → 0", Status.FAILED)), "squeezed").decide().status.value
+    'failed'
+    """
+
+    name: str
+    rests_on: Sequence
+    licence: str
+
+    def decide(self, facts: Facts | None = None) -> Result:
+        if not self.rests_on:
+            return _result(self.name, Status.UNDECIDED, "rests on no proved step")
+        pairs = [(n, st if st is not None else (facts.converges.get(n, (Status.UNDECIDED,))[0] if facts is not None
+                                                else Status.UNDECIDED)) for n, st in self.rests_on]
+        status = _weakest(st for _, st in pairs)
+        used = ", ".join(f"{n} ({st})" for n, st in pairs)
+        return _result(self.name, status, f"{self.licence}; rests on {used}")
