@@ -10,7 +10,6 @@ is dropped.  With K_p in front of the signed sum and ‖η‖² (no ½), V_c = 2
 
 from __future__ import annotations
 
-import sympy
 
 from lkverify import dot, t
 

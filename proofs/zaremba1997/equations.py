@@ -35,7 +35,7 @@ from lkverify import Equation, Frame, Parameters, System, Term, Vector, cross, t
 __all__ = ["PAPER", "P", "M", "A", "B", "C", "k1", "k2", "k3", "Lam", "Kd", "Gamma", "Kp", "alpha", "lam_c",
            "lam0", "k0", "lam1", "delta", "lam", "c1", "c2", "c3", "wd", "wd_dot", "omega", "s1", "s2", "s3", "theta_r", "eps",
            "phi", "G", "theta", "Y", "e", "e_dot", "omega_e", "omega_r", "omega_r_dot", "v", "Y_c",
-           "phi_matrix", "G_matrix", "system1", "system2", "closed_loop2", "EDOT", "DINV", "frobenius_law", "upper", "composite_laws", "closed_loop1"]
+           "phi_matrix", "G_matrix", "reference_bounded", "system1", "system2", "closed_loop2", "EDOT", "DINV", "frobenius_law", "upper", "composite_laws", "closed_loop1"]
 
 PAPER = "zaremba1997"
 
@@ -227,3 +227,15 @@ def frobenius_law():
     Gm = G_matrix()
     Gam = Gm.adjugate() / Gm.det()
     return lam0 * (1 - sympy.sqrt(sum(x ** 2 for x in Gam)) / k0)
+
+
+def reference_bounded(values) -> tuple:
+    """(status, value, detail) of the hypothesis "ω_d, ω̇_d bounded" at the run's values (Theorems 1 and 2)."""
+    from lkverify.certify.steps.signals import bounded_in_t
+    from lkverify.status import Status
+
+    rows = [(f"{name}{'′' if k else ''}", *bounded_in_t(sympy.diff(sympy.sympify(values[name]), t, k)))
+            for name in ("wd1", "wd2", "wd3") for k in (0, 1)]
+    order = [Status.EXACT, Status.UNDECIDED, Status.FAILED]
+    status = max((st for _, st, _ in rows), key=order.index)
+    return status, None, "; ".join(f"{n}: {why}" for n, _, why in rows)

@@ -36,7 +36,7 @@ from lkverify.certify.matrices import matrix_positive_definite
 
 from lkverify.symbolic.polynomial import compare_polynomials as compare, time_derivative, plain, poly_ring, to_ring
 from .equations import (PAPER, Gamma, Kd, Lam, M, P, Y, c1, c2, c3, e, k1, k2, k3, omega, omega_e, omega_r,
-                        omega_r_dot, s1, s2, s3, system1, theta, theta_r, v)
+                        omega_r_dot, reference_bounded, s1, s2, s3, system1, theta, theta_r, v)
 
 __all__ = ["theorem1", "functional1", "theorem1_results", "hypotheses", "general_result", "argument"]
 
@@ -126,17 +126,8 @@ def general_result():
 
 def _hypotheses(values):
     out = hypotheses(values)
-    out.append(Result("hypothesis", "ω_d, ω̇_d bounded (the theorem's programmed motion)", *_reference(values)))
+    out.append(Result("hypothesis", "ω_d, ω̇_d bounded (the theorem's programmed motion)", *reference_bounded(values)))
     return out
-
-
-def _reference(values):
-    from lkverify.certify.steps.signals import bounded_in_t
-
-    rows = [(f"{name}{'′' if k else ''}", *bounded_in_t(sympy.diff(sympy.sympify(values[name]), t, k)))
-            for name in ("wd1", "wd2", "wd3") for k in (0, 1)]
-    status = max((st for _, st, _ in rows), key=lambda s: [Status.EXACT, Status.UNDECIDED, Status.FAILED].index(s))
-    return status, None, "; ".join(f"{n}: {why}" for n, _, why in rows)
 
 
 def argument(values):

@@ -32,12 +32,13 @@ from __future__ import annotations
 
 import sympy
 
-from lkverify import Check, Result, Status, cross, dot, t
+from lkverify import Result, Status, cross, dot, t
+from lkverify.catalogue.signal_theorem import SignalTheorem
 from lkverify.certify.matrices import matrix_positive_definite
 
 from lkverify.symbolic.polynomial import compare_polynomials as compare, time_derivative, plain, poly_ring, to_ring
 from .equations import (PAPER, Kp, Lam, M, P, alpha, c1, c2, c3, composite_laws, k1, k2, k3, lam, lam1, lam_c,
-                        omega_e, s1, s2, s3, system1, theta, e)
+                        omega_e, s1, s2, s3, system1, system2, theta, e)
 
 __all__ = ["theorem2", "Abstract", "abstract_loop", "reduce_det", "gamma_coefficients", "theorem2_results",
            "bound_310_results", "GAMMA_PRINTED"]
@@ -311,15 +312,123 @@ def hypotheses2(values):
     return out
 
 
-def _check(values):
+_RUNS: dict = {}
+
+
+def _derived(values):
+    """theorem2_results, bound_310_results, gamma_results and chetaev_results at these values (once per process)."""
     from .chetaev import chetaev_results
 
-    out, a, derived, printed = theorem2_results(values)
-    return (hypotheses2(values) + out + bound_310_results(a, derived, printed) + gamma_results(values)
-            + chetaev_results(a, derived))
+    key = tuple(sorted((k, str(v)) for k, v in values.items()))
+    if key not in _RUNS:
+        out, a, derived, printed = theorem2_results(values)
+        _RUNS.clear()
+        _RUNS[key] = {"identities": out, "310": bound_310_results(a, derived, printed),
+                      "gamma": gamma_results(values), "chetaev": chetaev_results(a, derived), "loop": a}
+    return _RUNS[key]
 
 
-theorem2 = Check("theorem2", parameters=P, checks=[_check], paper=PAPER,
-                 relevant=("M", "k1", "k2", "k3", "Lam", "Kp", "alpha", "lam_c", "lam1"),
-                 title="Theorem 2: V (3.1) along (1.3), (1.4), (3.2)–(3.4) piece by piece against (3.7)–(3.9); "
-                       "(3.10) and γ of (3.12) as bound steps")
+#: the rows of theorem2_results that derive V̇ (links); the others compare the paper's print (findings)
+_DERIVATIONS = ("d/dt(½V_δ) = ω_eᵀe along (1.4)", "(3.7): T1 = d/dt ½vᵀMv", "(3.8): T2 + T3",
+                "T4 derived: −λ_c‖η‖² − ηᵀ(v × Mω)")
+
+
+def _hypotheses(values):
+    from .equations import reference_bounded
+
+    return hypotheses2(values) + [Result("hypothesis", "ω_d, ω̇_d bounded (the programmed motion)",
+                                         *reference_bounded(values))]
+
+
+def _identities(values):
+    return [r for r in _derived(values)["identities"] if r.name in _DERIVATIONS]
+
+
+def _findings(values):
+    d = _derived(values)
+    return ([r for r in d["identities"] if r.name not in _DERIVATIONS] + [d["310"][0], d["310"][1], d["gamma"][1]]
+            + d["chetaev"])
+
+
+def chetaev_negative(values) -> Result:
+    """V_c of (3.11) (with K_p and ‖η‖²) < 0 arbitrarily near s = (−c1, c2, −c3), v = 0, θ_e = 0, η = 0 (exact).
+
+    Along the rotations about c2 by the Cayley parameter ε (s2 = c2, s1, s3 turned away from −c1, −c3):
+    V_c(ε)(1 + ε²) is a polynomial in ε, negative on (0, 1) by exact root isolation.
+    """
+    from lkverify.certify.steps.limits import negative_on
+
+    sub = P.substitution({k: x for k, x in values.items() if not k.startswith("wd")})
+    eps_ = sympy.Symbol("epsilon", positive=True)
+    C = [sympy.Matrix(c.xreplace(sub)) for c in (c1, c2, c3)]
+    axis = C[1]
+    K = sympy.Matrix([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]]) * eps_
+    R = (sympy.eye(3) - K).inv() * (sympy.eye(3) + K)                     # Cayley: a rotation about c2
+    S = [R * (-C[0]), R * C[1], R * (-C[2])]
+    ks = [sympy.sympify(k).xreplace(sub) for k in (k1, k2, k3)]
+    signed = (-ks[0] * dot(C[0] + S[0], C[0] + S[0]) + ks[1] * dot(C[1] - S[1], C[1] - S[1])
+              - ks[2] * dot(C[2] + S[2], C[2] + S[2]))
+    Vc = sympy.cancel(sympy.sympify(values["Kp"]) * signed)
+    num, den = sympy.fraction(sympy.together(Vc))
+    st, why = negative_on(sympy.expand(num * sympy.sign(den.subs(eps_, sympy.Rational(1, 2)))), eps_, 0, 1)
+    return Result("bound", "V_c < 0 arbitrarily near s = (−c1, c2, −c3)", st, {"V_c": str(sympy.factor(Vc))},
+                  f"at v = 0, θ_e = 0, η = 0 and the triad turned about c2 by the Cayley parameter ε: V_c = "
+                  f"{sympy.factor(Vc)} (exact): {why}")
+
+
+def argument(values):
+    """The links after the derived pieces of V̇: (3.10), (3.12) on D, (3.5), the convergence, Chetaev (3.11)."""
+    from lkverify.certify.steps import Decided, Follows
+
+    from .excitation import excitation_bounds
+
+    d = _derived(values)
+    along, gamma_step = d["310"][2], d["gamma"][0]
+    chet = {r.name: r.status for r in d["chetaev"]}
+    pe = excitation_bounds(values)
+
+    def pe_result(facts):
+        st = min((b.status for b in pe.values()), key=[Status.FAILED, Status.UNDECIDED, Status.CERTIFIED,
+                                                          Status.EXACT].index)
+        return Result("constant", "(3.5)", st, {k: (b.beta1, b.beta2) for k, b in pe.items()},
+                      "; ".join(f"∫{k}: {b.detail}" for k, b in pe.items()))
+
+    links = [
+        Decided("(3.10): V̇ ≤ −λ_cvᵀMv − (λ_c/2)‖η‖² − (λ_c/4)λ‖θ_e‖²_Γ⁻¹ − K_pΛeᵀe along the loop",
+                lambda facts: along),
+        Follows("(3.12): V̇ + γV ≤ 0 on D (3.6)", (("(3.10) along the loop", along.status),
+                                                  ("−(3.10) − γV ≥ 0 on D, γ = min{λ_c, λ_cλ1/2, 2}",
+                                                   gamma_step.status)),
+                "V̇ ≤ (3.10) ≤ −γV on D"),
+        Decided("persistent excitation (3.5): β1, β2 along the programmed motion", pe_result),
+        Follows("θ_r → θ, ε → 0 exponentially (PE)",
+                (("(3.12) V̇ + γV ≤ 0 on D", _weakest_of(along.status, gamma_step.status)),
+                 ("(3.5) certified", pe_result(None).status),
+                 ("(3.4) properties (a), (b): ‖Γ‖ ≤ k0 and λ(t) ≥ λ1 under (3.5)", Status.UNDECIDED)),
+                "V → 0 exponentially on D bounds ‖η‖, ‖v‖ and θ_eᵀΓ⁻¹θ_e, and Γ⁻¹ ≥ (λ1-dependent) I under "
+                "(3.5) turns the last into ‖θ_e‖ → 0 (properties (a), (b) of (3.4) are not encoded)"),
+        Decided("V_c < 0 arbitrarily near s = (−c1, c2, −c3)", lambda facts: chetaev_negative(values)),
+        Follows("(в) Chetaev: s = (−c1, c2, −c3) unstable",
+                (("(3.11) with K_p and ‖η‖²: V̇_c = 2V̇", chet.get("(3.11) with K_p and ‖η‖²: V̇_c = 2V̇",
+                                                                 Status.UNDECIDED)),
+                 ("V_c < 0 arbitrarily near", chetaev_negative(values).status),
+                 ("V̇_c = 2V̇ < 0 where V_c < 0, i.e. (3.10)", along.status)),
+                "Chetaev's theorem: V_c(s*) = 0, V_c < 0 at points arbitrarily near s*, V̇_c < 0 there"),
+    ]
+    return links, {f"wd{i}": values[f"wd{i}"] for i in (1, 2, 3)}
+
+
+def _weakest_of(*statuses):
+    for s_ in (Status.FAILED, Status.UNDECIDED, Status.SIMULATED, Status.ESTIMATED, Status.CERTIFIED):
+        if s_ in statuses:
+            return s_
+    return Status.EXACT
+
+
+theorem2 = SignalTheorem(
+    "theorem2", system=system2, hypotheses=[_hypotheses], derivations=[_identities], argument=argument,
+    findings=[_findings], paper=PAPER, derivations_link="V̇ of (3.1) piece by piece along the loop",
+    relevant=("M", "k1", "k2", "k3", "Lam", "Kp", "alpha", "lam_c", "lam1", "delta", "wd1", "wd2", "wd3"),
+    conclusion="θ_r → θ, ε → 0 exponentially on D; s = (−c1, c2, −c3) unstable",
+    title="Theorem 2: V (3.1) along (1.3), (1.4), (3.2)–(3.4) piece by piece; (3.10), (3.12) on D, persistent "
+          "excitation (3.5) certified, Chetaev (3.11)")

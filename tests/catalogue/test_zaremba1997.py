@@ -108,8 +108,10 @@ def test_theorem2_findings(theorem2_default):
     assert st["(3.9) second line = first line (as printed)"] is Status.FAILED
     assert st["(3.9) second line with −(λ_c/2)‖η‖² = first line"] is Status.EXACT
     assert st["(3.10) from the printed pieces: Q ⪰ 0 (Young's step, μ = 2σ_M)"] is Status.EXACT
-    assert st["(3.10) along the true loop (1.3), (3.2)–(3.4)"] is Status.FAILED
-    assert st["(3.12): V̇ + γV ≤ 0 on D (3.6), given (3.10)"] is Status.EXACT
+    links = {link.name: link.status for link in theorem2_default.chain}
+    assert links["(3.10): V̇ ≤ −λ_cvᵀMv − (λ_c/2)‖η‖² − (λ_c/4)λ‖θ_e‖²_Γ⁻¹ − K_pΛeᵀe along the loop"] is Status.FAILED
+    assert links["(3.12): V̇ + γV ≤ 0 on D (3.6)"] is Status.FAILED          # it rests on (3.10)
+    assert th2.gamma_results(DEFAULTS)[0].status is Status.EXACT               # the step from (3.10) itself
     assert st["γ of (3.12) against the largest γ of this step"] is Status.EXACT
     assert st["(3.11): the signed sum has the rate of V_δ along (1.4)"] is Status.EXACT
     assert st["(3.11) as printed: V̇_c = 2V̇ (3.10)"] is Status.FAILED
@@ -163,12 +165,40 @@ def test_region_fraction_grows_with_Lambda():
 
 # -- (3.5) -------------------------------------------------------------------------------------------------------
 
-def test_excitation_positive_for_catalogued_motion_and_zero_for_constant_axis():
-    bounds, grid = exc.excitation_bounds(DEFAULTS, horizon=80.0, samples=2001)
-    assert all(b1 > 0.05 and b2 > b1 for b1, b2 in bounds.values())
+def test_excitation_certified_for_catalogued_motion_and_failed_for_constant_axis():
+    bounds = exc.excitation_bounds(DEFAULTS)
+    for pe in bounds.values():
+        assert pe.status is Status.CERTIFIED
+        assert 0 < pe.beta1 <= pe.beta1_estimate and pe.beta2_estimate <= pe.beta2
+    assert bounds["φᵀφ"].beta1 > 0.5 and bounds["φᵀφ"].beta2 < 1.9     # sampled 0.577, 1.844
     still = P.resolve({"wd1": "1/2", "wd2": "0", "wd3": "0"}, use_defaults=True)
-    bounds, _ = exc.excitation_bounds(still, horizon=60.0, samples=1001)
-    assert all(b1 == 0 for b1, _ in bounds.values())
+    assert all(pe.status is Status.FAILED for pe in exc.excitation_bounds(still).values())
+    # ω_d along one axis but time-varying: Y_c has a zero column, the Gram a zero direction (exact)
+    one_axis = P.resolve({"wd1": "sin(t)/2", "wd2": "0", "wd3": "0"}, use_defaults=True)
+    pe = exc.excitation_bounds(one_axis)["φᵀφ"]
+    assert pe.status is Status.FAILED and "exactly 0" in pe.detail
+
+
+def test_excitation_constants_too_large_are_refuted():
+    bounds = exc.excitation_bounds(DEFAULTS)["φᵀφ"]
+    too_big = sympy.Rational(bounds.beta1_estimate).limit_denominator(1000) + sympy.Rational(1, 50)
+    res = exc.claimed_results(DEFAULTS, beta1=too_big, beta2=sympy.Rational(9, 5))
+    assert [r.status for r in res] == [Status.FAILED, Status.FAILED]      # β1 too large, β2 too small
+    assert "t0 =" in res[0].detail and "(arb)" in res[0].detail
+    res = exc.claimed_results(DEFAULTS, beta1=sympy.Rational(1, 2), beta2=2)   # below/above the certified ones
+    assert [r.status for r in res] == [Status.UNDECIDED, Status.UNDECIDED]
+
+
+def test_theorem2_chain_lists_excitation_and_chetaev():
+    rep = theorem2.run({})
+    links = {link.name: link for link in rep.chain}
+    assert rep.exit_code == 1 and rep.verdict.startswith("not established: (3.10)")
+    assert links["persistent excitation (3.5): β1, β2 along the programmed motion"].status is Status.CERTIFIED
+    assert links["V_c < 0 arbitrarily near s = (−c1, c2, −c3)"].status is Status.EXACT
+    assert links["(в) Chetaev: s = (−c1, c2, −c3) unstable"].status is Status.FAILED   # rests on (3.10)
+    assert links["conclusion"].status is None
+    # property (b) of (3.4) is not encoded: the PE conclusion is not proved even if (3.10) were
+    assert "(3.4) properties (a), (b)" in links["θ_r → θ, ε → 0 exponentially (PE)"].detail
 
 
 def test_items_at_defaults():

@@ -15,7 +15,7 @@ from ...report.results import Result
 from ...status import Status
 from .signals import Facts, _column, _result, _weakest
 
-__all__ = ["BoundedSignal", "Comparison", "FiniteLimit", "Follows", "LinearLimit", "negative_on"]
+__all__ = ["BoundedSignal", "Comparison", "Decided", "FiniteLimit", "Follows", "LinearLimit", "negative_on"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -301,3 +301,20 @@ class Follows:
         status = _weakest(st for _, st in pairs)
         used = ", ".join(f"{n} ({st})" for n, st in pairs)
         return _result(self.name, status, f"{self.licence}; rests on {used}")
+
+
+@dataclasses.dataclass(frozen=True)
+class Decided:
+    """A link decided by a computation of the proof (``compute(facts) → Result``: an exact witness, a
+    certified constant); the chain takes the Result's status as it is.
+
+    >>> Decided("β1 > 0", lambda facts: Result("constant", "β1 > 0", Status.CERTIFIED, 0.5, "certified")).decide().status.value
+    'certified'
+    """
+
+    name: str
+    compute: object
+
+    def decide(self, facts: Facts | None = None) -> Result:
+        res = self.compute(facts)
+        return Result(res.kind, self.name, res.status, res.value, res.detail)
