@@ -178,3 +178,28 @@ def test_bounded_in_t():
 def test_time_derivative_refuses_the_rate_of_a_coefficient():
     with pytest.raises(UnsupportedInput, match="rate of a coefficient"):
         time_derivative(x * z.diff(t), loop())
+
+
+def _lasalle(fx, fy, q, S):
+    from lkverify.certify.steps.limits import LaSalle
+
+    sys_ = System([Equation(X, [Term(fx)]), Equation(Y, [Term(fy)])], parameters=P)
+    links = [Dissipation(V, q, S), LevelSet(V, (("x", sympy.Matrix([x])), ("y", sympy.Matrix([y]))), sympy.eye(2)),
+             BoundedStates(), LaSalle()]
+    return run(links, system=sys_)[0]
+
+
+def test_lasalle_each_side_condition_alone():
+    res = _lasalle(y, -x - y, sympy.Matrix([y]), sympy.eye(1))                # damped: the origin
+    assert res[-1].status is Status.EXACT and res[-1].value["points"] == [["0", "0"]]
+    res = _lasalle(y, -x - y ** 3, sympy.Matrix([y ** 2]), sympy.eye(1))      # V̇ = −y⁴, written differently
+    assert res[-1].status is Status.EXACT
+    res = _lasalle(y, -x, sympy.Matrix([y]), sympy.zeros(1))                  # V̇ = 0: the invariant circles
+    assert res[-1].status is Status.UNDECIDED and "not a finite set" in res[-1].detail
+    res = _lasalle(y, -x - y * z, sympy.Matrix([y]), sympy.eye(1))            # a time-varying argument
+    assert res[0].status is Status.FAILED and res[-1].status is Status.UNDECIDED
+    res = _lasalle(y, -x - y, sympy.Matrix([y]), 2 * sympy.eye(1))            # a wrong V̇: dissipation refuted
+    assert res[0].status is Status.FAILED and res[-1].status is Status.FAILED
+    from lkverify.certify.steps.limits import LaSalle
+
+    assert LaSalle().decide(Facts(loop(), {}, {})).status is Status.UNDECIDED   # nothing established before

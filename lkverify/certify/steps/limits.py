@@ -15,7 +15,8 @@ from ...report.results import Result
 from ...status import Status
 from .signals import Facts, _column, _result, _weakest
 
-__all__ = ["BoundedSignal", "Comparison", "Decided", "FiniteLimit", "Follows", "LinearLimit", "negative_on"]
+__all__ = ["BoundedSignal", "Comparison", "Decided", "FiniteLimit", "Follows", "LaSalle", "LinearLimit",
+           "negative_on"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -318,3 +319,104 @@ class Decided:
     def decide(self, facts: Facts | None = None) -> Result:
         res = self.compute(facts)
         return Result(res.kind, self.name, res.status, res.value, res.detail)
+
+
+@dataclasses.dataclass(frozen=True)
+class LaSalle:
+    """**x(t) → a point of the largest invariant set in {V̇ = 0}** (LaSalle), for an autonomous polynomial ODE.
+
+    Side conditions, each decided: the system is autonomous (no t, no reference signal) with polynomial
+    right-hand sides; V̇ = −qᵀSq ≤ 0 (an earlier :class:`~.signals.Dissipation`); the solutions are
+    bounded (an earlier :class:`~.signals.BoundedStates`).  A solution that stays in {V̇ = 0} has every
+    Lie derivative of the generators of {V̇ = 0} vanish ({q = 0} when S ≻ 0, {qᵀSq = 0} otherwise),
+    so the largest invariant set lies in the variety of the ideal I = ⟨g, L_f g, L_f²g, …⟩, computed by
+    Gröbner bases until the chain stops (every L_f g reduces to 0 modulo I).  When that variety is finite
+    its points are solved exactly, and the ω-limit set (connected, in it) is one of them; otherwise
+    ``undecided``, naming the ideal.
+
+    Examples
+    --------
+    ẋ = y, ẏ = −x − y, V = (x² + y²)/2, V̇ = −y²: {y = 0} holds no solution but the origin.
+
+    >>> import sympy
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
+    >>> from lkverify.certify.steps import BoundedStates, Dissipation, LevelSet
+    >>> X, Y = Vector("x", 1), Vector("y", 1); x, y = X(t)[0], Y(t)[0]
+    >>> sys_ = System([Equation(X, [Term(y)]), Equation(Y, [Term(-x - y)])], parameters=Parameters())
+    >>> facts = Facts(sys_, {}, {})
+    >>> V = (x**2 + y**2) / 2
+    >>> _ = [link.decide(facts) for link in (Dissipation(V, sympy.Matrix([y]), sympy.eye(1)),
+    ...      LevelSet(V, (("x", sympy.Matrix([x])), ("y", sympy.Matrix([y]))), sympy.eye(2)), BoundedStates())]
+    >>> res = LaSalle().decide(facts)
+    >>> res.status.value, res.value["points"]
+    ('exact', [['0', '0']])
+    """
+
+    max_rounds: int = 12
+    name: str = "LaSalle: the largest invariant set in {V̇ = 0}"
+
+    def decide(self, facts: Facts) -> Result:
+        from ...symbolic.polynomial import plain
+
+        if facts.dissipation is None:
+            return _result(self.name, Status.UNDECIDED, "rests on V̇ = −qᵀSq ≤ 0, which no earlier link established")
+        d_status, q, S, psd = facts.dissipation
+        xs = list(facts.states)
+        rates = {}
+        for state in facts.system.states:
+            rhs = facts.system.rhs(state)
+            for i, f in enumerate(state.functions):
+                rates[sympy.Symbol(f.__name__, real=True)] = sympy.expand(plain(
+                    rhs[i].xreplace(facts.sub) if facts.sub else rhs[i]))
+        others = set().union(*(r.free_symbols for r in rates.values())) - set(xs)
+        from ...declare.symbols import t as time
+
+        if others or any(r.has(time) for r in rates.values()):
+            return _result(self.name, Status.UNDECIDED, f"LaSalle needs an autonomous system; the right-hand sides "
+                                                        f"contain {', '.join(sorted(map(str, others))) or 't'}")
+        try:
+            for r in rates.values():
+                sympy.Poly(r, *xs)
+        except sympy.PolynomialError:
+            return _result(self.name, Status.UNDECIDED, "the right-hand sides are not polynomials in the states")
+        from ..matrices import matrix_positive_definite
+
+        pd = matrix_positive_definite(S, name="S")
+        gens = list(q) if pd.status.is_proof else [sympy.expand((q.T * S * q)[0, 0])]
+
+        def lie(g):
+            return sympy.expand(sum((sympy.diff(g, x) * rates[x] for x in xs), sympy.Integer(0)))
+
+        ideal = [sympy.expand(g) for g in gens if sympy.expand(g) != 0]
+        for _ in range(self.max_rounds):
+            basis = sympy.groebner(ideal, *xs, order="grevlex") if ideal else None
+            new = []
+            for g in ideal:
+                lg = lie(g)
+                rem = basis.reduce(lg)[1] if basis is not None else lg
+                if rem != 0:
+                    new.append(rem)
+            if not new:
+                break
+            ideal += new
+        else:
+            return _result(self.name, Status.UNDECIDED, f"the chain of Lie derivatives did not stop in "
+                                                        f"{self.max_rounds} rounds")
+        parts = [(d_status, f"V̇ = −qᵀSq ≤ 0 ({d_status})"),
+                 (facts.states_bounded or Status.UNDECIDED, f"the states bounded ({facts.states_bounded})")]
+        full = sympy.groebner(ideal, *xs, order="lex")
+        if not full.is_zero_dimensional:
+            parts.append((Status.UNDECIDED, f"the largest invariant set lies in {{{', '.join(map(str, full.exprs))} "
+                                            f"= 0}}, not a finite set"))
+            points = []
+        else:
+            points = [p for p in (sympy.solve_poly_system(list(full), *xs) or [])
+                      if all(sympy.sympify(v).is_real for v in p)]
+            parts.append((Status.EXACT, f"the ideal ⟨g, L_f g, …⟩ ({len(ideal)} generators) is zero-dimensional: "
+                                        f"{len(points)} real points"))
+        status = _weakest(st for st, _ in parts)
+        shown = "; ".join("(" + ", ".join(map(str, p)) + ")" for p in points[:8])
+        detail = "; ".join(w for _, w in parts) + (f": every solution converges to one of {shown}"
+                                                   if status.is_proof else "")
+        facts.converges["x"] = (status, None)
+        return _result(self.name, status, detail, {"points": [[str(v) for v in p] for p in points]})

@@ -167,6 +167,7 @@ class Facts:
         self.signals_t: dict = {}      # name → the signal in the states at t
         self.nonincreasing: dict = {}  # V (plain) → status
         self.states_bounded: Status | None = None
+        self.dissipation = None        # (status, q, S, S ⪰ 0 check) of the last Dissipation: V̇ = −qᵀSq
 
     # -- reference signals -------------------------------------------------------------------------------------
     def reference_bounded(self, symbol) -> tuple:
@@ -268,6 +269,7 @@ class Dissipation:
         psd = matrix_positive_definite(sympy.Matrix(self.S).xreplace(facts.sub), name="S", semidefinite=True)
         status = _weakest([ident.status, psd.status])
         facts.nonincreasing[facts.plain(self.V)] = status
+        facts.dissipation = (status, facts.plain(_column(self.q)), sympy.Matrix(self.S).xreplace(facts.sub), psd)
         detail = (f"V̇ along the system equals −qᵀSq: {ident.detail}; S ⪰ 0: {psd.detail}; hence V(t) ≤ V(0) "
                   f"on every solution" if status.is_proof else
                   f"identity: {ident.status} ({ident.detail}); S ⪰ 0: {psd.status} ({psd.detail})")
