@@ -69,7 +69,7 @@ _SOURCES = {
     "linear_report": ".linear", "rightmost_roots": ".linear", "stability_intervals": ".linear",
     "linear_family": ".linear", "linearise": ".linear", "linearise_at": ".linear",
     "BoundedNotAttractive": ".simulate", "Converges": ".simulate", "DoesNotConverge": ".simulate",
-    "EnvelopeSpec": ".simulate", "FasterThan": ".simulate", "FromValues": ".simulate", "Run": ".simulate",
+    "EnvelopeSpec": ".simulate", "FasterThan": ".simulate", "FromValues": ".simulate", "Run": ".simulate", "Until": ".simulate",
     "Sensitive": ".simulate", "Series": ".simulate", "SmootherThan": ".simulate", "StepControl": ".simulate",
     "compile_family": ".simulate",
     "SweepOptions": ".sweep", "SweepResult": ".sweep",  # the job itself is lkverify.sweep.sweep (the subpackage's name)
@@ -87,7 +87,7 @@ __all__ = [
     "restoring_torque_rate",
     # examples, runs and claims about them (simulate), constants jobs (certify)
     "BoundedNotAttractive", "ConstantsJob", "Converges", "DoesNotConverge", "EnvelopeSpec", "Example", "FasterThan",
-    "FromValues", "Run", "Sensitive", "Series", "SmootherThan", "StepControl", "Template",
+    "FromValues", "Run", "Sensitive", "Series", "SmootherThan", "StepControl", "Template", "Until",
     # linear delay systems (linear)
     "LinearDelaySystem", "certified_interval", "certify_delay", "linear_report", "rightmost_roots",
     "stability_intervals",

@@ -270,17 +270,27 @@ class Example(Item):
         with outcome ``budget`` and later runs are not started (outcome ``budget``,
         no samples beyond t0).
         """
+        given = t_end is not None
         t_end = self.t_end if t_end is None else float(t_end)
         out = {}
         for k, run in enumerate(self.runs):
             vals = {**dict(run.values), **dict(values or {})}
             hist = {**dict(run.history), **dict(histories or {})}
-            if progress:
-                progress(f"{self.qualified_name}: run {k + 1}/{len(self.runs)} {run.label} to t = {t_end:g}")
-            t_eval = np.linspace(0.0, t_end, self.samples)
-            out[run.label] = simulate(run.system, history=hist, t_end=t_end, values=vals, step=self.step,
-                                      t_eval=t_eval,
-                                      progress=fraction(run.label) if fraction else None, deadline=deadline)
+            horizon = t_end
+            while True:
+                if progress:
+                    progress(f"{self.qualified_name}: run {k + 1}/{len(self.runs)} {run.label} to t = {horizon:g}")
+                samples = max(self.samples, int(round(self.samples * horizon / t_end)))
+                tr = simulate(run.system, history=hist, t_end=horizon, values=vals, step=self.step,
+                              t_eval=np.linspace(0.0, horizon, samples),
+                              progress=fraction(run.label) if fraction else None, deadline=deadline)
+                u = run.until
+                if given or u is None or tr.outcome is not Outcome.SUCCESS or horizon >= float(u.t_max):
+                    break  # a user's --t-end is kept as given
+                if float(np.asarray(u.distance(tr))[-1]) < float(u.tol):
+                    break
+                horizon = min(2 * horizon, float(u.t_max))
+            out[run.label] = tr
         return out
 
     def summary(self, label: str, tr: Trajectory) -> RunSummary:

@@ -21,7 +21,7 @@ from .family import CompiledFamily, compile_family
 from .control import QUADRATURE_MAX_STEP, StepControl
 from .envelope import EnvelopeCheck, cross_check
 from .experiments import (BoundedNotAttractive, Converges, DoesNotConverge, EnvelopeSpec, FasterThan, FromValues, Run,
-                          RunClaim, RunSummary, Sensitive, Series, SmootherThan, along)
+                          RunClaim, RunSummary, Sensitive, Series, SmootherThan, Until, along)
 from .runs import MAX_STEPS, PreparedRun, Trajectory, prepare_run, simulate
 from .solver import DDESolution, DenseHistory, Outcome, solve_dde
 from .trend import DecaysAlgebraically, LimitAboveFloor
@@ -32,5 +32,5 @@ __all__ = [
     "EnvelopeCheck", "EnvelopeSpec", "FasterThan", "MAX_STEPS", "Outcome", "PreparedRun", "QUADRATURE_MAX_STEP",
     "Run", "RunClaim", "RunSummary", "Sensitive", "Series", "SmootherThan", "StepControl", "Trajectory",
     "compile_system", "CompiledFamily", "compile_family", "cross_check", "prepare_run", "simulate", "solve_dde",
-    "DecaysAlgebraically", "LimitAboveFloor",
+    "DecaysAlgebraically", "LimitAboveFloor", "Until",
 ]

@@ -30,7 +30,7 @@ from .runs import Trajectory, simulate
 from .solver import Outcome
 
 __all__ = ["BoundedNotAttractive", "Converges", "DoesNotConverge", "EnvelopeSpec", "FasterThan", "FromValues", "Run", "along",
-           "RunClaim", "RunSummary", "Sensitive", "Series", "SmootherThan"]
+           "RunClaim", "RunSummary", "Sensitive", "Series", "SmootherThan", "Until"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -95,6 +95,39 @@ class Run:
     system: System
     values: Mapping = dataclasses.field(default_factory=dict)
     history: Mapping = dataclasses.field(default_factory=dict)
+    until: "Until | None" = None
+
+
+@dataclasses.dataclass(frozen=True)
+class Until:
+    """Run on until ``distance(trajectory)`` (an array over the samples) ends below ``tol``.
+
+    The example's horizon is doubled (the run integrated again from t0, the sample density kept)
+    until the last sample is below ``tol`` or the horizon reaches ``t_max``; the claims then report
+    the time from which the signal stays below its target.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from lkverify import Parameters, Vector, System, Equation, Term, t
+    >>> from lkverify.catalogue.examples import Example
+    >>> P = Parameters(); x = Vector("x", 1); sys = System([Equation(x, [Term(-x(t)[0] / 10)])], parameters=P)
+    >>> slow = Run("slow", sys, {}, {"x": [1]}, until=Until(lambda tr: abs(tr.states["x"][:, 0]), 1e-3, t_max=200))
+    >>> tr = Example("demo", runs=[slow], t_end=10, series=[], distance=lambda s: abs(s["x"][:, 0]),
+    ...              samples=101).simulate()["slow"]
+    >>> float(tr.t[-1]), bool(abs(tr.states["x"][-1, 0]) < 1e-3)     # e^(−t/10) < 1e-3 needs t > 69
+    (80.0, True)
+    """
+
+    distance: object
+    tol: float
+    t_max: float
+
+    def __post_init__(self):
+        from ..errors import InputError
+
+        if not (float(self.tol) > 0 and float(self.t_max) > 0):
+            raise InputError(f"Until: expected tol > 0 and t_max > 0, got tol = {self.tol}, t_max = {self.t_max}")
 
 
 @dataclasses.dataclass(frozen=True)
