@@ -32,9 +32,13 @@ from .equations import PAPER, P
 from .remark1_runs import SIM_SCALES, SIM_TAUS, simulated_advice
 from .theorem1_chain import CONCLUSION, optimal_choices, steps
 
-__all__ = ["TAUS", "SCALES", "SIM_TAUS", "SIM_SCALES", "certified_delta", "optimised_delta", "remark1"]
+__all__ = ["TAUS", "SCALES", "SIM_TAUS", "SIM_SCALES", "PIECE_ENDS", "certified_delta", "delta_pieces",
+           "optimised_delta", "remark1"]
 
 TAUS = ("1/4", "1/2", "1", "2", "4")
+#: the ends of the pieces of τ ∈ [1/10, 10] on which δ(τ) is certified piecewise (ratio about 10^(1/6))
+PIECE_ENDS = ("1/10", "3/20", "11/50", "8/25", "47/100", "17/25", "1", "147/100", "43/20", "16/5", "47/10",
+              "34/5", "10")
 SCALES = ("1", "2", "4")
 _CHOICES = ("gamma", "lam", "mu", "epsilon", "delta", "eta_w", "eta_K", "eta")
 
@@ -117,6 +121,46 @@ def optimised_delta(values) -> Result:
                   f"estimated here, proved by `lkverify constants aleksandrov2026.remark1`")
 
 
+def delta_pieces(values, ends=PIECE_ENDS, *, budget=None, progress=None) -> list:
+    """δ(τ) certified piecewise: Theorem 1 over each interval [τ_k, τ_k+1] of ``ends`` (a box run, the
+    choices picked for the whole interval), so every τ of a piece has the region δ of that piece.
+
+    One Result per established piece (kind ``region``, status ``certified``: the chain proved for every
+    τ of the piece at those exact choices); a piece that does not close is ``undecided`` (or
+    ``failed`` with the box run's failing point).  The pieces' δ form a piecewise-constant certified
+    lower bound of the region δ(τ) this proof allows.
+    """
+    from lkverify.catalogue.boxrun import BoxStatus
+    from lkverify.catalogue.items import _show
+
+    from .theorem1 import theorem1
+
+    base = {k: v for k, v in values.items() if k not in _CHOICES and k != "tau"}
+    start = time.perf_counter()
+    out = []
+    for a, b in zip(ends, ends[1:]):
+        name = f"delta on tau in [{a}, {b}]"
+        if budget is not None and time.perf_counter() - start > budget:
+            out.append(Result("region", name, Status.UNDECIDED, None, f"not computed: the budget of {budget:g} s was spent"))
+            continue
+        if progress:
+            progress(f"aleksandrov2026.remark1: Theorem 1 over τ ∈ [{a}, {b}]")
+        rep = theorem1.run({k: _show(v) for k, v in base.items()}, box={"tau": (a, b)}, max_boxes=4)
+        for piece in rep.pieces:
+            lo, hi = piece.box.bounds["tau"]
+            label = f"delta on tau in [{lo}, {hi}]"
+            if piece.status is not BoxStatus.ESTABLISHED or piece.report is None:
+                st = Status.FAILED if piece.failing is not None else Status.UNDECIDED
+                out.append(Result("region", label, st, None, f"Theorem 1 over τ ∈ [{lo}, {hi}]: {piece.verdict}"))
+                continue
+            d = sympy.Rational(piece.choices["delta"])
+            out.append(Result("region", label, Status.CERTIFIED,
+                              {"tau": [str(lo), str(hi)], "delta": float(d), "delta_exact": str(d)},
+                              f"Theorem 1 established for every τ ∈ [{lo}, {hi}] with the region ‖s_i(ξ) − r_i‖ ≤ "
+                              f"δ = {d} ({float(d):.3g}): δ(τ) ≥ {float(d):.3g} on the piece"))
+    return out
+
+
 def _remark1_check(v, *, budget=60.0):
     low, high = optimised_delta(_gains(v, "1/4", 1)), optimised_delta(_gains(v, "4", 1))
     strong = optimised_delta(_gains(v, "4", 4))
@@ -134,10 +178,17 @@ class Remark1Table:
     It has the interface ``lkverify constants`` expects (``goals``, ``run``, ``plot``).
     """
 
-    goals = ["default"]
+    goals = ["default", "pieces"]
 
     def run(self, item_name, values, shown, *, budget=300.0, progress=None, goal=None):
-        """Certify δ at every grid point within ``budget`` seconds (points left over are undecided)."""
+        """Certify δ at every grid point within ``budget`` seconds (points left over are undecided); with
+        ``goal="pieces"`` δ(τ) piecewise on :data:`PIECE_ENDS` (:func:`delta_pieces`)."""
+        if goal == "pieces":
+            rows = delta_pieces(values, budget=budget, progress=progress)
+            bad = [r.name for r in rows if not r.status.is_proof]
+            verdict = ("δ(τ) certified on every piece of τ ∈ [1/10, 10]" if not bad else
+                       f"undecided: {', '.join(bad)}")
+            return Report(item_name, dict(shown), tuple(rows), verdict), {"pieces": rows}
         start = time.perf_counter()
         results = []
         for scale in SCALES:
@@ -158,6 +209,9 @@ class Remark1Table:
     def plot(self, extra, path, *, values=None):
         """δ against τ (log–log), one curve per α scaling; open markers where a point is not certified."""
         from matplotlib.figure import Figure
+
+        if "pieces" in extra:
+            return _plot_pieces(extra["pieces"], path)
 
         fig = Figure(figsize=(8.4, 4.6))
         ax = fig.subplots()
@@ -186,6 +240,35 @@ class Remark1Table:
         from lkverify.report.files import save_figure
 
         save_figure(fig, path, dpi=120)
+
+
+def _plot_pieces(rows, path):
+    """The piecewise-constant certified δ(τ) on [1/10, 10] (log–log), pieces not established hatched."""
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(8.4, 4.4))
+    ax = fig.subplots()
+    done = False
+    for r in rows:
+        lo, hi = (float(sympy.Rational(x)) for x in r.name.split("[")[1].rstrip("]").split(", "))
+        if r.status.is_proof:
+            ax.hlines(r.value["delta"], lo, hi, colors="tab:blue", lw=2.2,
+                      label=None if done else "certified δ on the piece (Theorem 1 proved for every τ in it)")
+            done = True
+        else:
+            ax.axvspan(lo, hi, color="tab:red", alpha=0.15)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel(r"delay $\tau$")
+    ax.set_ylabel(r"certified $\delta$ (region $\|s_i(\xi) - r_i\| \leq \delta$)")
+    ax.set_title("Remark 1 of paper 000: δ(τ) certified piecewise on τ ∈ [1/10, 10]\n"
+                 "(each piece a box run of Theorem 1, the choices picked for the whole piece)", fontsize=10)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=8, loc="lower left")
+    fig.tight_layout()
+    from lkverify.report.files import save_figure
+
+    save_figure(fig, path, dpi=120)
 
 
 def _base_alpha(rows):

@@ -129,3 +129,20 @@ def test_intervals_covering_tau_from_one_tenth_to_ten_are_established():
     for lo, hi in PIECES:
         rep = theorem1.run(box={"tau": (lo, hi)}, max_boxes=3)
         assert rep.status is BoxStatus.ESTABLISHED, f"[{lo}, {hi}]: {rep.verdict}"
+
+
+@pytest.mark.slow
+def test_remark1_delta_certified_piecewise(tmp_path):
+    """δ(τ) of Remark 1 as a certified piecewise-constant lower bound: each piece a box run of Theorem 1."""
+    from lkverify.proofs.aleksandrov2026.remark1 import Remark1Table, delta_pieces
+
+    values = P.resolve({}, use_defaults=True)
+    rows = delta_pieces(values, ends=("1/10", "1/2", "4"))
+    assert [r.status for r in rows] == [Status.CERTIFIED, Status.CERTIFIED]
+    assert rows[0].value["delta"] > rows[1].value["delta"]             # "the delay decreases δ", per piece
+    assert rows[1].value["tau"] == ["1/2", "4"]
+    rep, extra = Remark1Table().run("aleksandrov2026.remark1", values, {}, goal="pieces", budget=0.0)
+    assert rep.results and all(r.status is Status.UNDECIDED for r in rep.results)       # the budget is honoured
+    path = tmp_path / "pieces.png"
+    Remark1Table().plot({"pieces": rows}, path)
+    assert path.stat().st_size > 0
