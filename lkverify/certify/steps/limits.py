@@ -13,7 +13,7 @@ import sympy
 
 from ...report.results import Result
 from ...status import Status
-from .signals import Facts, _column, _result, _weakest
+from .signals import Facts, _column, _demo, _result, _weakest  # noqa: F401 - _demo: the doctests
 
 __all__ = ["BoundedSignal", "Comparison", "Decided", "FiniteLimit", "Follows", "LaSalle", "LinearLimit",
            "negative_on"]
@@ -25,10 +25,7 @@ class LinearLimit:
 
     Examples
     --------
-    >>> import sympy
-    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
-    >>> X = Vector("x", 1); x = X(t)[0]; q = sympy.Matrix([x])
-    >>> facts = Facts(System([Equation(X, [Term(-x)])], parameters=Parameters()), {}, {})
+    >>> facts, x, q = _demo()                    # ẋ = −x, nothing established yet
     >>> LinearLimit("2x", 2 * q, {"x": 2}).decide(facts).status.value   # rests on x → 0, not established
     'undecided'
     """
@@ -72,10 +69,7 @@ class BoundedSignal:
 
     Examples
     --------
-    >>> import sympy
-    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
-    >>> X = Vector("x", 1); x = X(t)[0]; q = sympy.Matrix([x])
-    >>> facts = Facts(System([Equation(X, [Term(-x)])], parameters=Parameters()), {}, {})
+    >>> facts, x, q = _demo()                    # ẋ = −x, nothing established yet
     >>> BoundedSignal("x²", q.applyfunc(lambda c: c**2)).decide(facts).detail
     'x²_1 depends on the states, and no link has bounded them'
     """
@@ -220,10 +214,7 @@ class FiniteLimit:
 
     Examples
     --------
-    >>> import sympy
-    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
-    >>> X = Vector("x", 1); x = X(t)[0]; q = sympy.Matrix([x])
-    >>> facts = Facts(System([Equation(X, [Term(-x)])], parameters=Parameters()), {}, {})
+    >>> facts, x, q = _demo()                    # ẋ = −x, nothing established yet
     >>> FiniteLimit("x", "x", q).decide(facts).status.value       # rests on x → 0
     'undecided'
     """

@@ -145,10 +145,7 @@ class Facts:
 
     Examples
     --------
-    >>> import sympy
-    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
-    >>> X = Vector("x", 1); x = X(t)[0]; q = sympy.Matrix([x])
-    >>> facts = Facts(System([Equation(X, [Term(-x)])], parameters=Parameters()), {}, {})
+    >>> facts, x, q = _demo()                    # ẋ = −x, nothing established yet
     >>> facts.states, facts.reference_bounded(sympy.Symbol("w"))[0].value
     ([x_1], 'undecided')
     """
@@ -229,6 +226,19 @@ class Facts:
         return st, f"{name} {what} ({st})"
 
 
+def _demo():
+    """(facts, x, q) for the doctests: ẋ = −x, no link decided yet, q = (x)."""
+    from ...declare.parameters import Parameters
+    from ...declare.states import Vector
+    from ...declare.symbols import t
+    from ...declare.system import Equation, System
+    from ...declare.terms import Term as _Term
+
+    X = Vector("x", 1)
+    x = X(t)[0]
+    return Facts(System([Equation(X, [_Term(-x)])], parameters=Parameters()), {}, {}), x, sympy.Matrix([x])
+
+
 def _result(name, status, detail, value=None, kind="bound") -> Result:
     return Result(kind, name, status, value, detail)
 
@@ -245,10 +255,7 @@ class Dissipation:
 
     Examples
     --------
-    >>> import sympy
-    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
-    >>> X = Vector("x", 1); x = X(t)[0]; q = sympy.Matrix([x])
-    >>> facts = Facts(System([Equation(X, [Term(-x)])], parameters=Parameters()), {}, {})
+    >>> facts, x, q = _demo()                    # ẋ = −x, nothing established yet
     >>> Dissipation(x**2 / 2, q, sympy.eye(1)).decide(facts).status.value      # V̇ = −x²
     'exact'
     >>> Dissipation(x**2 / 2, q, 2 * sympy.eye(1)).decide(facts).status.value  # the claimed −2x² is refuted
@@ -289,10 +296,7 @@ class LevelSet:
 
     Examples
     --------
-    >>> import sympy
-    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
-    >>> X = Vector("x", 1); x = X(t)[0]; q = sympy.Matrix([x])
-    >>> facts = Facts(System([Equation(X, [Term(-x)])], parameters=Parameters()), {}, {})
+    >>> facts, x, q = _demo()                    # ẋ = −x, nothing established yet
     >>> _ = Dissipation(x**2 / 2, q, sympy.eye(1)).decide(facts)
     >>> LevelSet(x**2 / 2, (("x", q),), sympy.eye(1)).decide(facts).status.value
     'exact'
@@ -333,10 +337,7 @@ class Conserved:
 
     Examples
     --------
-    >>> import sympy
-    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
-    >>> X = Vector("x", 1); x = X(t)[0]; q = sympy.Matrix([x])
-    >>> facts = Facts(System([Equation(X, [Term(-x)])], parameters=Parameters()), {}, {})
+    >>> facts, x, q = _demo()                    # ẋ = −x, nothing established yet
     >>> Conserved("x", q).decide(facts).status.value                        # ẋ = −x shrinks ‖x‖
     'failed'
     """
@@ -369,10 +370,7 @@ class BoundedStates:
 
     Examples
     --------
-    >>> import sympy
-    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
-    >>> X = Vector("x", 1); x = X(t)[0]; q = sympy.Matrix([x])
-    >>> facts = Facts(System([Equation(X, [Term(-x)])], parameters=Parameters()), {}, {})
+    >>> facts, x, q = _demo()                    # ẋ = −x, nothing established yet
     >>> BoundedStates().decide(facts).status.value                           # nothing bounds x yet
     'undecided'
     >>> _ = [link.decide(facts) for link in (Dissipation(x**2 / 2, q, sympy.eye(1)),
@@ -454,10 +452,7 @@ class SquareIntegrable:
 
     Examples
     --------
-    >>> import sympy
-    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
-    >>> X = Vector("x", 1); x = X(t)[0]; q = sympy.Matrix([x])
-    >>> facts = Facts(System([Equation(X, [Term(-x)])], parameters=Parameters()), {}, {})
+    >>> facts, x, q = _demo()                    # ẋ = −x, nothing established yet
     >>> SquareIntegrable("x", q, sympy.eye(1), storage=x**2 / 2).decide(facts).status.value  # x² = −d/dt(x²/2)
     'undecided'
     >>> facts.states_bounded = Status.EXACT        # (what BoundedStates would establish)
@@ -517,10 +512,7 @@ class Barbalat:
 
     Examples
     --------
-    >>> import sympy
-    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
-    >>> X = Vector("x", 1); x = X(t)[0]; q = sympy.Matrix([x])
-    >>> facts = Facts(System([Equation(X, [Term(-x)])], parameters=Parameters()), {}, {})
+    >>> facts, x, q = _demo()                    # ẋ = −x, nothing established yet
     >>> Barbalat("x").decide(facts).status.value        # no earlier link shows x ∈ L2
     'undecided'
     """
