@@ -169,7 +169,8 @@ def test_excitation_certified_for_catalogued_motion_and_failed_for_constant_axis
     bounds = exc.excitation_bounds(DEFAULTS)
     for pe in bounds.values():
         assert pe.status is Status.CERTIFIED
-        assert 0 < pe.beta1 <= pe.beta1_estimate and pe.beta2_estimate <= pe.beta2
+        assert pe.beta1 > 0
+        assert pe.beta1 <= pe.beta1_estimate and pe.beta2_estimate <= pe.beta2
     assert bounds["φᵀφ"].beta1 > 0.5 and bounds["φᵀφ"].beta2 < 1.9     # sampled 0.577, 1.844
     still = P.resolve({"wd1": "1/2", "wd2": "0", "wd3": "0"}, use_defaults=True)
     assert all(pe.status is Status.FAILED for pe in exc.excitation_bounds(still).values())
