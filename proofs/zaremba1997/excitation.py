@@ -41,9 +41,18 @@ def reference_regressor(values) -> sympy.Matrix:
 
 def excitation_bounds(values) -> dict:
     """{"φᵀφ": ExcitationBounds, "φφᵀ": ExcitationBounds}: (3.5) certified along the programmed motion."""
+    from lkverify.certify.excitation import ExcitationBounds
+    from lkverify.errors import UnsupportedInput
+
     Yr = reference_regressor(values)
-    return {name: certified_bounds(Yr, t, lam=values["lam_c"], delta=values["delta"], transpose=tr)
-            for name, tr in _GRAMS}
+    out = {}
+    for name, tr in _GRAMS:
+        try:
+            out[name] = certified_bounds(Yr, t, lam=values["lam_c"], delta=values["delta"], transpose=tr)
+        except UnsupportedInput as exc:  # a valid ω_d the certification does not treat: not decided
+            out[name] = ExcitationBounds(Status.UNDECIDED, None, None, float("nan"), float("nan"),
+                                         f"not certified: {exc}")
+    return out
 
 
 def claimed_results(values, beta1=None, beta2=None, *, t0=None) -> list:

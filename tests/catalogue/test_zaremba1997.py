@@ -291,3 +291,9 @@ def test_theorem1_needs_distinct_k_and_a_bounded_reference():
     assert rep.exit_code == 1 and rep.verdict.startswith("failed: hypotheses")
     rep = theorem1.run({"wd1": "t*sin(t)/10"})
     assert rep.exit_code == 1 and "undecided" in rep.verdict
+
+
+def test_excitation_of_a_motion_it_cannot_certify_is_undecided_not_bad_input():
+    v = P.resolve({"wd1": "sin(sqrt(2)*t)/2"}, use_defaults=True)      # an irrational frequency: valid input
+    assert all(r.status is Status.UNDECIDED for r in excitation.run({"wd1": "sin(sqrt(2)*t)/2"}).results)
+    assert all(pe.status is Status.UNDECIDED for pe in exc.excitation_bounds(v).values())
