@@ -285,10 +285,13 @@ def excitation_bounds(Y, t, *, lam, delta, transpose: bool = False, horizon=None
     if b1_hat <= 1e-12 * max(b2_hat, 1e-300):
         k = int(np.argmin(ev[:, 0]))
         t0 = sympy.Rational(ts[k]).limit_denominator(10 ** 6)
-        ref = refute_claim(gram, t0, b1_hat if b1_hat > 0 else 0, lower=True, strict=False)
-        return ExcitationBounds(Status.FAILED if ref else Status.UNDECIDED, None, None, b1_hat, b2_hat,
-                                f"λ_min(G) = {b1_hat:.3g} at t ≈ {float(t0):.4g}: no persistent excitation"
-                                + (f" ({ref})" if ref else ""))
+        ref = refute_claim(gram, t0, 0, lower=True, strict=False)   # λ_min(G(t0)) ≤ 0 proved: no β1 > 0
+        if ref:
+            return ExcitationBounds(Status.FAILED, None, None, b1_hat, b2_hat,
+                                    f"λ_min(G(t0)) ≤ 0 at t0 = {t0}: no persistent excitation ({ref})")
+        return ExcitationBounds(Status.UNDECIDED, None, None, b1_hat, b2_hat,
+                                f"λ_min(G) ≈ {b1_hat:.3g} at t ≈ {float(t0):.4g} (floating point): no excitation "
+                                f"seen, and none certified either way")
     margin = loss * b1_hat
     T0 = horizon
     if T0 is None:
