@@ -173,6 +173,8 @@ def test_bounded_in_t():
     assert bounded_in_t(t ** 2 - 1)[0] is Status.FAILED
     assert bounded_in_t(sympy.exp(t))[0] is Status.UNDECIDED
     assert bounded_in_t(sympy.Integer(3))[0] is Status.EXACT
+    assert bounded_in_t(sympy.sin(sympy.I * t))[0] is not Status.EXACT             # i·sinh t: unbounded
+    assert bounded_in_t(t + sympy.sin(t))[0] is not Status.EXACT
 
 
 def test_time_derivative_refuses_the_rate_of_a_coefficient():

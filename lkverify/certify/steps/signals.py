@@ -111,9 +111,9 @@ def bounded_in_t(expr) -> tuple:
 
     def ok(x) -> bool:
         if not x.free_symbols:
-            return x.is_finite is not False and x.is_real is not False
+            return x.is_finite is True
         if isinstance(x, (sympy.sin, sympy.cos)):
-            return x.args[0].is_real is not False
+            return x.args[0].is_real is True
         if isinstance(x, sympy.exp):
             arg = sympy.expand(x.args[0])
             a = arg.coeff(t, 1)
