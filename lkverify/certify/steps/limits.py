@@ -257,11 +257,8 @@ class FiniteLimit:
             parts.append((Status.UNDECIDED, f"{{{self.g} = 0}} on the constraints is not finite"))
             points = []
         else:
-            points = sympy.solve_poly_system(list(full), *xs) or []
-            real = [p for p in points if all(sympy.sympify(v).is_real for v in p)]
-            parts.append((Status.EXACT, f"{{{self.g} = 0}} on the constraints has {len(real)} real points "
-                                        f"(a zero-dimensional Gröbner basis, solved exactly)"))
-            points = real
+            st, points, why = _real_points(full, xs)
+            parts.append((st, f"{{{self.g} = 0}} on the constraints: {why}"))
         status = _weakest(st for st, _ in parts)
         shown = "; ".join("(" + ", ".join(map(str, p)) + ")" for p in points[:8])
         detail = "; ".join(w for _, w in parts) + (
@@ -401,13 +398,33 @@ class LaSalle:
                                             f"= 0}}, not a finite set"))
             points = []
         else:
-            points = [p for p in (sympy.solve_poly_system(list(full), *xs) or [])
-                      if all(sympy.sympify(v).is_real for v in p)]
-            parts.append((Status.EXACT, f"the ideal ⟨g, L_f g, …⟩ ({len(ideal)} generators) is zero-dimensional: "
-                                        f"{len(points)} real points"))
+            st, points, why = _real_points(full, xs)
+            parts.append((st, f"the ideal ⟨g, L_f g, …⟩ ({len(ideal)} generators) is zero-dimensional: {why}"))
         status = _weakest(st for st, _ in parts)
         shown = "; ".join("(" + ", ".join(map(str, p)) + ")" for p in points[:8])
         detail = "; ".join(w for _, w in parts) + (f": every solution converges to one of {shown}"
                                                    if status.is_proof else "")
         facts.converges["x"] = (status, None)
         return _result(self.name, status, detail, {"points": [[str(v) for v in p] for p in points]})
+
+
+def _real_points(basis, xs) -> tuple:
+    """``(status, points, why)``: every real point of a zero-dimensional Gröbner basis, solved exactly.
+
+    ``undecided`` when SymPy does not solve the system, finds no real point (a bounded solution has a
+    nonempty ω-limit set, so that would be a failure of the solver), or cannot decide whether a
+    coordinate is real: a point is never dropped on a guess.
+    """
+    try:
+        found = sympy.solve_poly_system(list(basis), *xs)
+    except (NotImplementedError, sympy.PolynomialError) as exc:
+        return Status.UNDECIDED, [], f"not solved ({exc})"
+    if not found:
+        return Status.UNDECIDED, [], "not solved (no solution returned)"
+    flags = [[sympy.sympify(v).is_real for v in p] for p in found]
+    if any(f is None for fl in flags for f in fl):
+        return Status.UNDECIDED, [], "a coordinate's reality is not decided"
+    real = [p for p, fl in zip(found, flags) if all(fl)]
+    if not real:
+        return Status.UNDECIDED, [], "no real point found"
+    return Status.EXACT, real, f"{len(real)} real points (a zero-dimensional Gröbner basis, solved exactly)"
