@@ -136,7 +136,7 @@ class SignalTheorem(Theorem):
                 facts = Facts(self.system, self.parameters.substitution(everything), references)
                 for link in chain:
                     say(f"{self.qualified_name}: {link.name}")
-                    res, how = _capped(cap, lambda: link.decide(facts))
+                    res, how = _capped(cap, lambda: _decided(link, facts))
                     res = res if not how else Result("bound", link.name, Status.UNDECIDED, None,
                                                      _cut_text(cap, how, "link"))
                     results.append(res)
@@ -156,3 +156,15 @@ class SignalTheorem(Theorem):
 
     def shown(self, values: Mapping, chosen: Mapping | None = None) -> dict:
         return {k: _show(v) for k, v in values.items() if self.relevant is None or k in self.relevant}
+
+
+def _decided(link, facts) -> Result:
+    """``link.decide(facts)``; an expression the link's exact machinery cannot treat leaves it ``undecided``."""
+    import sympy
+
+    from ..errors import UnsupportedInput
+
+    try:
+        return link.decide(facts)
+    except (UnsupportedInput, sympy.PolynomialError, sympy.CoercionFailed, NotImplementedError) as exc:
+        return Result("bound", link.name, Status.UNDECIDED, None, f"not decided: {exc}")

@@ -229,15 +229,22 @@ def compare_polynomials(name, printed, derived, *, kind="identity", reference=""
     >>> r = compare_polynomials("(2.9)", [("−x²", -x**2), ("−2xy", -2*x*y)], [("−(x+y)²", -(x + y)**2)])
     >>> str(r.status), r.value["residue"]      # the printed form dropped −y²
     ('failed', 'y**2')
+    >>> str(compare_polynomials("root", [("√(1+x²)", sympy.sqrt(1 + x**2))], [("1", 1)]).status)   # not decided here
+    'undecided'
     """
     everything = [x for _, x in list(printed) + list(derived)]
     if any(not isinstance(x, PolyElement) and _has_float(x) for x in everything):
         return Result(kind, name, Status.UNDECIDED, None,
                       "floating-point parameter values: an identity is decided only for exact values (pass them as "
                       "text, e.g. --set a=0.1, which is read as 1/10)")
-    R = R or poly_ring(everything)
-    printed = [(lab, to_ring(R, x)) for lab, x in printed]
-    derived = [(lab, to_ring(R, x)) for lab, x in derived]
+    try:
+        R = R or poly_ring(everything)
+        printed = [(lab, to_ring(R, x)) for lab, x in printed]
+        derived = [(lab, to_ring(R, x)) for lab, x in derived]
+    except (ValueError, sympy.CoercionFailed, sympy.PolynomialError) as exc:
+        return Result(kind, name, Status.UNDECIDED, None,
+                      f"not a polynomial identity (a side is not a polynomial with rational coefficients: {exc}); "
+                      f"an identity of other functions goes through check_identity")
     residue = sum((x for _, x in printed), R.zero) - sum((x for _, x in derived), R.zero)
     if residue == 0:
         return Result(kind, name, Status.EXACT, None,

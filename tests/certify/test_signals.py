@@ -205,3 +205,15 @@ def test_lasalle_each_side_condition_alone():
     from lkverify.certify.steps.limits import LaSalle
 
     assert LaSalle().decide(Facts(loop(), {}, {})).status is Status.UNDECIDED   # nothing established before
+
+
+def test_a_signal_theorem_leaves_an_untreatable_link_undecided():
+    from lkverify import Result, SignalTheorem
+
+    def argument(values):
+        root = sympy.sqrt(1 + x ** 2)                                       # not a polynomial
+        return [Dissipation(root, q, sympy.eye(1)), Barbalat("x")], {}
+
+    ok = lambda v: [Result("hypothesis", "none", Status.EXACT, None, "")]   # noqa: E731
+    rep = SignalTheorem("demo", system=loop(), hypotheses=[ok], argument=argument).run()
+    assert rep.exit_code == 1 and rep.verdict.startswith("undecided")
