@@ -350,13 +350,15 @@ def _findings(values):
             + d["chetaev"])
 
 
-def chetaev_negative(values) -> Result:
-    """V_c of (3.11) (with K_p and ‖η‖²) < 0 arbitrarily near s = (−c1, c2, −c3), v = 0, θ_e = 0, η = 0 (exact).
+def chetaev_link(values, rate_status):
+    """Chetaev's theorem for s* = (−c1, c2, −c3) (Theorem 2 (в)) with V_c of (3.11) (K_p and ‖η‖²).
 
-    Along the rotations about c2 by the Cayley parameter ε (s2 = c2, s1, s3 turned away from −c1, −c3):
-    V_c(ε)(1 + ε²) is a polynomial in ε, negative on (0, 1) by exact root isolation.
+    At s*, v = 0, θ_e = 0, η = 0 the terms vᵀMv, θ_eᵀΓ⁻¹θ_e, ‖η‖² vanish, and along the rotations of the
+    triad about c2 by the Cayley parameter ε (only s moves) V_c = K_p(−k1‖c1 + s1‖² + k2‖c2 − s2‖² − k3‖c3 + s3‖²);
+    the link decides V_c(s*) = 0 and V_c < 0 for ε ∈ (0, 1) exactly; V̇_c < 0 where V_c < 0 rests on (3.10).
     """
-    from lkverify.certify.steps.limits import negative_on
+    from lkverify.certify.steps import Chetaev
+    from lkverify.symbolic.polynomial import plain
 
     sub = P.substitution({k: x for k, x in values.items() if not k.startswith("wd")})
     eps_ = sympy.Symbol("epsilon", positive=True)
@@ -364,16 +366,17 @@ def chetaev_negative(values) -> Result:
     axis = C[1]
     K = sympy.Matrix([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]]) * eps_
     R = (sympy.eye(3) - K).inv() * (sympy.eye(3) + K)                     # Cayley: a rotation about c2
-    S = [R * (-C[0]), R * C[1], R * (-C[2])]
+    S_t = (s1(t), s2(t), s3(t))
+    S = [plain(x) for x in S_t]
+    star = [-C[0], C[1], -C[2]]
     ks = [sympy.sympify(k).xreplace(sub) for k in (k1, k2, k3)]
     signed = (-ks[0] * dot(C[0] + S[0], C[0] + S[0]) + ks[1] * dot(C[1] - S[1], C[1] - S[1])
               - ks[2] * dot(C[2] + S[2], C[2] + S[2]))
-    Vc = sympy.cancel(sympy.sympify(values["Kp"]) * signed)
-    num, den = sympy.fraction(sympy.together(Vc))
-    st, why = negative_on(sympy.expand(num * sympy.sign(den.subs(eps_, sympy.Rational(1, 2)))), eps_, 0, 1)
-    return Result("bound", "V_c < 0 arbitrarily near s = (−c1, c2, −c3)", st, {"V_c": str(sympy.factor(Vc))},
-                  f"at v = 0, θ_e = 0, η = 0 and the triad turned about c2 by the Cayley parameter ε: V_c = "
-                  f"{sympy.factor(Vc)} (exact): {why}")
+    Vc = sympy.sympify(values["Kp"]) * signed
+    point = {x: v for Sx, st in zip(S, star) for x, v in zip(Sx, st)}
+    curve = {x: v for Sx, st in zip(S, star) for x, v in zip(Sx, R * st)}
+    return Chetaev(Vc, point, curve, eps_, ("V̇_c = 2V̇ < 0 where V_c < 0, i.e. (3.10)", rate_status),
+                   name="(в) Chetaev: s = (−c1, c2, −c3) unstable")
 
 
 def argument(values):
@@ -407,13 +410,8 @@ def argument(values):
                  ("(3.4) properties (a), (b): ‖Γ‖ ≤ k0 and λ(t) ≥ λ1 under (3.5)", Status.UNDECIDED)),
                 "V → 0 exponentially on D bounds ‖η‖, ‖v‖ and θ_eᵀΓ⁻¹θ_e, and Γ⁻¹ ≥ (λ1-dependent) I under "
                 "(3.5) turns the last into ‖θ_e‖ → 0 (properties (a), (b) of (3.4) are not encoded)"),
-        Decided("V_c < 0 arbitrarily near s = (−c1, c2, −c3)", lambda facts: chetaev_negative(values)),
-        Follows("(в) Chetaev: s = (−c1, c2, −c3) unstable",
-                (("(3.11) with K_p and ‖η‖²: V̇_c = 2V̇", chet.get("(3.11) with K_p and ‖η‖²: V̇_c = 2V̇",
-                                                                 Status.UNDECIDED)),
-                 ("V_c < 0 arbitrarily near", chetaev_negative(values).status),
-                 ("V̇_c = 2V̇ < 0 where V_c < 0, i.e. (3.10)", along.status)),
-                "Chetaev's theorem: V_c(s*) = 0, V_c < 0 at points arbitrarily near s*, V̇_c < 0 there"),
+        chetaev_link(values, _weakest_of(along.status, chet.get("(3.11) with K_p and ‖η‖²: V̇_c = 2V̇",
+                                                                 Status.UNDECIDED))),
     ]
     return links, {f"wd{i}": values[f"wd{i}"] for i in (1, 2, 3)}
 

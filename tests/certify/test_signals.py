@@ -217,3 +217,18 @@ def test_a_signal_theorem_leaves_an_untreatable_link_undecided():
     ok = lambda v: [Result("hypothesis", "none", Status.EXACT, None, "")]   # noqa: E731
     rep = SignalTheorem("demo", system=loop(), hypotheses=[ok], argument=argument).run()
     assert rep.exit_code == 1 and rep.verdict.startswith("undecided")
+
+
+def test_chetaev_each_condition_alone():
+    from lkverify.certify.steps.limits import Chetaev
+
+    a, b, e = sympy.symbols("a b epsilon", real=True)
+    ok = ("V̇ < 0 where V < 0", Status.EXACT)
+    assert Chetaev(a**2 - b**2, {a: 0, b: 0}, {b: e}, e, ok).decide().status is Status.EXACT
+    assert Chetaev(a**2 - b**2 + 1, {a: 0, b: 0}, {b: e}, e, ok).decide().status is Status.FAILED   # V(x*) ≠ 0
+    assert Chetaev(a**2 - b**2, {a: 0, b: 0}, {a: e}, e, ok).decide().status is Status.FAILED      # V > 0 there
+    assert Chetaev(a**2 - b**2, {a: 0, b: 0}, {b: 1 + e}, e, ok).decide().status is Status.UNDECIDED  # not at x*
+    bad_rate = ("V̇ < 0 where V < 0", Status.FAILED)
+    assert Chetaev(a**2 - b**2, {a: 0, b: 0}, {b: e}, e, bad_rate).decide().status is Status.FAILED
+    # V = −ε²/(1 − 2ε) along the curve: negative only for ε < 1/2, the denominator vanishes inside (0, 1)
+    assert Chetaev(-b**2 / (1 - 2 * b), {a: 0, b: 0}, {b: e}, e, ok).decide().status is not Status.EXACT

@@ -39,7 +39,7 @@ from .rules import (CauchySchwarz, Context, Equal, Nonpositive, Printed, Rayleig
 from .witnesses import UnsupportedClaim, Witness, search_witness
 from .timevarying import TimeVaryingRate, UpperBound, sup_in_t, sup_on
 from .signals import Barbalat, BoundedStates, Conserved, Dissipation, Facts, LevelSet, SquareIntegrable
-from .limits import BoundedSignal, Comparison, Decided, FiniteLimit, Follows, LaSalle, LinearLimit
+from .limits import BoundedSignal, Chetaev, Comparison, Decided, FiniteLimit, Follows, LaSalle, LinearLimit
 
 __all__ = ["Auto", "BoundClaim", "CauchySchwarz", "ChainResult", "Context", "Decay", "Equal", "Measure", "Nonpositive",
            "Printed", "QuadraticForms", "Rayleigh", "Region", "StepResult", "Template", "TermBound", "TermResult",
@@ -50,5 +50,5 @@ __all__ = ["Auto", "BoundClaim", "CauchySchwarz", "ChainResult", "Context", "Dec
            "Evaluated", "KernelBound", "MemoryHolder", "MemoryKrasovskii", "MemoryMeasure", "MemoryWeight",
            "memory_integral_of", "memory_measure"]
 __all__ += ["TimeVaryingRate", "UpperBound", "sup_in_t", "sup_on", "lyapunov_steps"]
-__all__ += ["Barbalat", "BoundedSignal", "BoundedStates", "Comparison", "Conserved", "Dissipation", "Facts",
+__all__ += ["Barbalat", "BoundedSignal", "BoundedStates", "Chetaev", "Comparison", "Conserved", "Dissipation", "Facts",
             "Decided", "FiniteLimit", "Follows", "LaSalle", "LevelSet", "LinearLimit", "SquareIntegrable"]

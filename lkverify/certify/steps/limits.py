@@ -15,7 +15,7 @@ from ...report.results import Result
 from ...status import Status
 from .signals import Facts, _column, _demo, _result, _weakest  # noqa: F401 - _demo: the doctests
 
-__all__ = ["BoundedSignal", "Comparison", "Decided", "FiniteLimit", "Follows", "LaSalle", "LinearLimit",
+__all__ = ["BoundedSignal", "Chetaev", "Comparison", "Decided", "FiniteLimit", "Follows", "LaSalle", "LinearLimit",
            "negative_on"]
 
 
@@ -428,3 +428,68 @@ def _real_points(basis, xs) -> tuple:
     if not real:
         return Status.UNDECIDED, [], "no real point found"
     return Status.EXACT, real, f"{len(real)} real points (a zero-dimensional Gröbner basis, solved exactly)"
+
+
+@dataclasses.dataclass(frozen=True)
+class Chetaev:
+    """**The equilibrium x* is unstable** (Chetaev's theorem): V(x*) = 0, V < 0 at points arbitrarily near
+    x*, and V̇ < 0 wherever V < 0 near x* (the last from ``rate``, a (name, Status) pair of an earlier
+    proof), so a solution started where V < 0 cannot stay near x*.
+
+    The middle condition is decided here exactly: ``curve`` maps ε to states (rational functions of ε)
+    with curve(0) = x*; V along it is a rational function of ε whose sign on (0, ε0) is decided by exact
+    root isolation (:func:`negative_on` on numerator·sign(denominator)).
+
+    Parameters
+    ----------
+    V : expression in plain state symbols
+    point : mapping
+        x*, plain symbol → exact value.
+    curve : mapping
+        Plain symbol → expression in ``eps`` equal to x* at ε = 0 (states absent keep x*'s value).
+    eps : Symbol
+    rate : (str, Status)
+    eps0 : the end of the interval of ε (default 1)
+
+    Examples
+    --------
+    >>> a, b, e = sympy.symbols("a b epsilon", real=True)
+    >>> link = Chetaev(a**2 - b**2, {a: 0, b: 0}, {b: e}, e, ("V̇ < 0 where V < 0", Status.EXACT))
+    >>> link.decide().status.value
+    'exact'
+    >>> Chetaev(a**2 + b**2, {a: 0, b: 0}, {b: e}, e, ("V̇ < 0 where V < 0", Status.EXACT)).decide().status.value
+    'failed'
+    """
+
+    V: object
+    point: Mapping
+    curve: Mapping
+    eps: object
+    rate: tuple
+    eps0: object = 1
+    name: str = "Chetaev: the equilibrium is unstable"
+
+    def decide(self, facts: Facts | None = None) -> Result:
+        V = sympy.sympify(self.V)
+        at = {k: sympy.sympify(v) for k, v in self.point.items()}
+        parts = []
+        v0 = sympy.simplify(V.xreplace(at))
+        parts.append((Status.EXACT if v0 == 0 else Status.FAILED, f"V(x*) = {v0}"))
+        starts = {k: sympy.simplify(sympy.sympify(c).subs(self.eps, 0) - at.get(k, 0)) for k, c in self.curve.items()}
+        if any(d != 0 for d in starts.values()):
+            return _result(self.name, Status.UNDECIDED, "the curve does not start at x*")
+        along = sympy.cancel(sympy.together(V.xreplace({**at, **{k: sympy.sympify(c) for k, c in self.curve.items()}})))
+        num, den = sympy.fraction(along)
+        probe = sympy.Rational(sympy.sympify(self.eps0)) / 2
+        sign = sympy.sign(den.subs(self.eps, probe))
+        st, why = negative_on(sympy.expand(num * sign), self.eps, 0, self.eps0)
+        if st is Status.EXACT:
+            st_den, why_den = negative_on(sympy.expand(-sign * den), self.eps, 0, self.eps0)  # den keeps its sign
+            st = st if st_den is Status.EXACT else Status.UNDECIDED
+            why = why if st_den is Status.EXACT else f"the denominator of V along the curve may vanish: {why_den}"
+        parts.append((st, f"V along the curve = {sympy.factor(along)}: {why.replace('φ', 'V')}"))
+        name, rate_status = self.rate
+        parts.append((rate_status, f"{name} ({rate_status})"))
+        status = _weakest(s for s, _ in parts)
+        return _result(self.name, status, "; ".join(w for _, w in parts)
+                       + (": the equilibrium is unstable" if status.is_proof else ""), {"V_along": str(along)})
