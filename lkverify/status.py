@@ -113,3 +113,16 @@ class Status(Label):
     def holds(self) -> bool:
         """True unless the result failed or is undecided."""
         return self not in (Status.FAILED, Status.UNDECIDED)
+
+    @classmethod
+    def weakest(cls, statuses) -> "Status":
+        """The weakest of ``statuses`` (failed < undecided < simulated < estimated < certified < exact); exact for none.
+
+        >>> Status.weakest([Status.EXACT, Status.CERTIFIED]).value, Status.weakest([]).value
+        ('certified', 'exact')
+        """
+        statuses = list(statuses)
+        for s in (cls.FAILED, cls.UNDECIDED, cls.SIMULATED, cls.ESTIMATED, cls.CERTIFIED):
+            if s in statuses:
+                return s
+        return cls.EXACT

@@ -34,7 +34,7 @@ from ..status import Status
 from ..declare.system import System
 from ..memo import Memo
 from .links import Link, _best_step, _combined, _concluded, theorem_verdict
-from .statements import _capped, _cut_text, _not_exact_if_floats, _symbols_of
+from .statements import _capped, _checked_rows, _cut_text, _not_exact_if_floats, _symbols_of
 
 __all__ = ["Check", "Item", "Link", "Theorem", "theorem_verdict"]
 
@@ -667,10 +667,7 @@ class Check(Item):
         results: list[Result] = []
         with work_limits():
             cap = Deadline(Budget.of(budget).seconds, cap=True)
-            for k, check in enumerate(self.checks):
-                rows, how = _capped(cap, lambda: check(everything))
-                results += rows if not how else [Result("bound", f"check {k + 1} of {len(self.checks)}",
-                                                        Status.UNDECIDED, None, _cut_text(cap, how, "check"))]
+            results += _checked_rows(self.checks, everything, cap)
         failed = [r.name for r in results if r.status is Status.FAILED]
         undecided = [r.name for r in results if r.status is Status.UNDECIDED]
         verdict = (f"failed: {', '.join(failed)}" if failed else f"undecided: {', '.join(undecided)}" if undecided

@@ -15,7 +15,7 @@ from ..report.results import Report, Result
 from ..status import Status
 from .items import Theorem, _show
 from .links import Link, _combined, theorem_verdict
-from .statements import _capped, _cut_text
+from .statements import _capped, _checked_rows, _cut_text
 
 __all__ = ["SignalTheorem"]
 
@@ -104,13 +104,7 @@ class SignalTheorem(Theorem):
             cap = Deadline(Budget.of(budget).seconds, cap=True)
 
             def rows(fns, what):
-                out = []
-                for k, fn in enumerate(fns):
-                    say(f"{self.qualified_name}: {what} {k + 1}/{len(fns)}")
-                    got, how = _capped(cap, lambda: fn(everything))
-                    out += got if not how else [Result("bound", f"{what} {k + 1} of {len(fns)}", Status.UNDECIDED,
-                                                       None, _cut_text(cap, how, "check"))]
-                return out
+                return _checked_rows(fns, everything, cap, what, lambda msg: say(f"{self.qualified_name}: {msg}"))
 
             hyps = rows(self.hypothesis_checks, "hypotheses")
             bad = [r for r in hyps if not r.status.is_proof]

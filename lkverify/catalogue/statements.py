@@ -51,6 +51,19 @@ def _cut_text(cap, how: str, what: str = "step") -> str:
     return f"the budget was spent during this {what} (time budget of {cap.seconds:g} s); raise --budget to finish"
 
 
+def _checked_rows(fns, values, cap, what: str = "check", say=None) -> list:
+    """The rows of every ``fn(values)`` under the cap; a call the cap cuts is one ``undecided`` row
+    ("{what} k of n"), never missing."""
+    out = []
+    for k, fn in enumerate(fns):
+        if say is not None:
+            say(f"{what} {k + 1}/{len(fns)}")
+        got, how = _capped(cap, lambda: fn(values))
+        out += got if not how else [Result("bound", f"{what} {k + 1} of {len(fns)}", Status.UNDECIDED, None,
+                                           _cut_text(cap, how, "check"))]
+    return out
+
+
 def _symbols_of(statement) -> set:
     """The symbols and applied functions a hypothesis or claim is written in."""
     import sympy

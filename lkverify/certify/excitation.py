@@ -130,6 +130,9 @@ class _Gram:
         self.n = next(iter(integrand.values())).shape[0] if integrand else 0
         d = self._delta_ball()
         self.factors = []  # (e^{κδ} − 1)/κ and e^{κδ} − 1 as balls
+        # ‖C_κ‖_F and Re κ as balls, once: the Lipschitz and decay bounds are taken on every sub-interval
+        self.norms = [sum((abs(x) ** 2 for row in Cb for x in row), arb(0)).sqrt() for _, _, _, Cb, _ in self.terms]
+        self.rates = [arb(re.p) / re.q for re, *_ in self.terms]
         for re, im, k, _, _ in self.terms:
             if re == 0 and im == 0:
                 self.factors.append((acb(d), acb(0)))
@@ -181,11 +184,10 @@ class _Gram:
         from flint import arb
 
         total = arb(0)
-        for (re, im, _, Cb, _), (_, em1) in zip(self.terms, self.factors):
+        for (re, *_), (_, em1), norm, rate in zip(self.terms, self.factors, self.norms, self.rates):
             if periodic_only and re != 0:
                 continue
-            norm = sum((abs(Cb[i][j]) ** 2 for i in range(self.n) for j in range(self.n)), arb(0)).sqrt()
-            total += norm * abs(em1) * (arb(re.p) / re.q * a).exp()
+            total += norm * abs(em1) * (rate * a).exp()
         return total
 
     def decay(self, a):
@@ -193,11 +195,9 @@ class _Gram:
         from flint import arb
 
         total = arb(0)
-        for (re, im, k, Cb, _), (fac, _) in zip(self.terms, self.factors):
-            if re == 0:
-                continue
-            norm = sum((abs(Cb[i][j]) ** 2 for i in range(self.n) for j in range(self.n)), arb(0)).sqrt()
-            total += norm * abs(fac) * (arb(re.p) / re.q * a).exp()
+        for (re, *_), (fac, _), norm, rate in zip(self.terms, self.factors, self.norms, self.rates):
+            if re != 0:
+                total += norm * abs(fac) * (rate * a).exp()
         return total
 
     def period(self):
@@ -355,8 +355,8 @@ def refute_claim(gram, t0, beta, *, lower: bool = True, strict: bool = True):
     uq = [sympy.Rational(x).limit_denominator(10 ** 8) for x in u]
     ub = [arb(x.p) / x.q for x in uq]
     quad = sum((ub[i] * S[i][j] * ub[j] for i in range(gram.n) for j in range(gram.n)), arb(0))
-    val = quad - arb(sympy.Rational(beta).limit_denominator(10 ** 12).p) / sympy.Rational(beta).limit_denominator(10 ** 12).q \
-        * sum((x * x for x in ub), arb(0))
+    b = sympy.Rational(beta)
+    val = quad - arb(b.p) / b.q * sum((x * x for x in ub), arb(0))
     ok = (val < 0 if strict else val <= 0) if lower else val > 0
     if not ok:
         return None

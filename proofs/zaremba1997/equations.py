@@ -236,6 +236,5 @@ def reference_bounded(values) -> tuple:
 
     rows = [(f"{name}{'′' if k else ''}", *bounded_in_t(sympy.diff(sympy.sympify(values[name]), t, k)))
             for name in ("wd1", "wd2", "wd3") for k in (0, 1)]
-    order = [Status.EXACT, Status.UNDECIDED, Status.FAILED]
-    status = max((st for _, st, _ in rows), key=order.index)
+    status = Status.weakest(st for _, st, _ in rows)
     return status, None, "; ".join(f"{n}: {why}" for n, _, why in rows)

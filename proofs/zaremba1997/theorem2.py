@@ -34,6 +34,7 @@ import sympy
 
 from lkverify import Result, Status, cross, dot, t
 from lkverify.catalogue.signal_theorem import SignalTheorem
+from lkverify.memo import Memo
 from lkverify.certify.matrices import matrix_positive_definite
 
 from lkverify.symbolic.polynomial import compare_polynomials as compare, time_derivative, plain, poly_ring, to_ring
@@ -312,7 +313,7 @@ def hypotheses2(values):
     return out
 
 
-_RUNS: dict = {}
+_RUNS = Memo(1)  # the derivations of the last values: the derivations, the links and the findings share them
 
 
 def _derived(values):
@@ -320,12 +321,12 @@ def _derived(values):
     from .chetaev import chetaev_results
 
     key = tuple(sorted((k, str(v)) for k, v in values.items()))
-    if key not in _RUNS:
+    hit = _RUNS.get(key)
+    if hit is None:
         out, a, derived, printed = theorem2_results(values)
-        _RUNS.clear()
-        _RUNS[key] = {"identities": out, "310": bound_310_results(a, derived, printed),
-                      "gamma": gamma_results(values), "chetaev": chetaev_results(a, derived), "loop": a}
-    return _RUNS[key]
+        hit = _RUNS[key] = {"identities": out, "310": bound_310_results(a, derived, printed),
+                            "gamma": gamma_results(values), "chetaev": chetaev_results(a, derived)}
+    return hit
 
 
 #: the rows of theorem2_results that derive V̇ (links); the others compare the paper's print (findings)
@@ -391,8 +392,7 @@ def argument(values):
     pe = excitation_bounds(values)
 
     def pe_result(facts):
-        st = min((b.status for b in pe.values()), key=[Status.FAILED, Status.UNDECIDED, Status.CERTIFIED,
-                                                          Status.EXACT].index)
+        st = Status.weakest(b.status for b in pe.values())
         return Result("constant", "(3.5)", st, {k: (b.beta1, b.beta2) for k, b in pe.items()},
                       "; ".join(f"∫{k}: {b.detail}" for k, b in pe.items()))
 
@@ -405,22 +405,15 @@ def argument(values):
                 "V̇ ≤ (3.10) ≤ −γV on D"),
         Decided("persistent excitation (3.5): β1, β2 along the programmed motion", pe_result),
         Follows("θ_r → θ, ε → 0 exponentially (PE)",
-                (("(3.12) V̇ + γV ≤ 0 on D", _weakest_of(along.status, gamma_step.status)),
+                (("(3.12) V̇ + γV ≤ 0 on D", Status.weakest([along.status, gamma_step.status])),
                  ("(3.5) certified", pe_result(None).status),
                  ("(3.4) properties (a), (b): ‖Γ‖ ≤ k0 and λ(t) ≥ λ1 under (3.5)", Status.UNDECIDED)),
                 "V → 0 exponentially on D bounds ‖η‖, ‖v‖ and θ_eᵀΓ⁻¹θ_e, and Γ⁻¹ ≥ (λ1-dependent) I under "
                 "(3.5) turns the last into ‖θ_e‖ → 0 (properties (a), (b) of (3.4) are not encoded)"),
-        chetaev_link(values, _weakest_of(along.status, chet.get("(3.11) with K_p and ‖η‖²: V̇_c = 2V̇",
-                                                                 Status.UNDECIDED))),
+        chetaev_link(values, Status.weakest([along.status, chet.get("(3.11) with K_p and ‖η‖²: V̇_c = 2V̇",
+                                                                    Status.UNDECIDED)])),
     ]
     return links, {f"wd{i}": values[f"wd{i}"] for i in (1, 2, 3)}
-
-
-def _weakest_of(*statuses):
-    for s_ in (Status.FAILED, Status.UNDECIDED, Status.SIMULATED, Status.ESTIMATED, Status.CERTIFIED):
-        if s_ in statuses:
-            return s_
-    return Status.EXACT
 
 
 theorem2 = SignalTheorem(

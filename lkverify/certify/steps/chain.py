@@ -49,9 +49,6 @@ __all__ = ["ChainResult", "Decay", "TermBound", "TermResult", "TermwiseBound", "
 #: the cheap witness search run against every proved term bound (a fixed amount of work)
 CROSS_EXAMINATION = {"starts": 2, "pieces": (("ends", "1/1000"),), "maxiter": 40, "seeds": 6}
 
-_WEAKEST = (Status.FAILED, Status.UNDECIDED, Status.SIMULATED, Status.ESTIMATED, Status.CERTIFIED)
-
-
 def _constant_text(name, value, info) -> str:
     """``c = 5.636 (certified; estimate 5.608, gap 0.50 %)``."""
     est = (info or {}).get("estimate")
@@ -67,12 +64,7 @@ def _put(expr, constants: Mapping):
     return expr.xreplace(rep)
 
 
-def _weakest(statuses) -> Status:
-    statuses = list(statuses)
-    for s in _WEAKEST:
-        if s in statuses:
-            return s
-    return Status.EXACT
+_weakest = Status.weakest
 
 
 @dataclasses.dataclass(frozen=True)

@@ -13,7 +13,8 @@ import sympy
 
 from ...report.results import Result
 from ...status import Status
-from .signals import Facts, _column, _demo, _result, _weakest  # noqa: F401 - _demo: the doctests
+from ...declare.vectors import as_column
+from .signals import Facts, _demo, _result, _weakest  # noqa: F401 - _demo: the doctests
 
 __all__ = ["BoundedSignal", "Chetaev", "Comparison", "Decided", "FiniteLimit", "Follows", "LaSalle", "LinearLimit",
            "negative_on"]
@@ -41,7 +42,7 @@ class LinearLimit:
     def decide(self, facts: Facts) -> Result:
         from ...symbolic.polynomial import compare_polynomials
 
-        g = facts.plain(_column(self.g))
+        g = facts.plain(as_column(self.g))
         parts, total = [], sympy.zeros(len(g), 1)
         for n, c in self.combination.items():
             st, why = facts.needs(facts.converges, n, "→ 0")
@@ -82,7 +83,7 @@ class BoundedSignal:
         return f"{self.signal} bounded"
 
     def decide(self, facts: Facts) -> Result:
-        g = facts.plain(_column(self.g))
+        g = facts.plain(as_column(self.g))
         parts = [facts.polynomial_in_states(c, f"{self.signal}_{k + 1}") for k, c in enumerate(g)]
         status = _weakest(st for st, _ in parts)
         facts.signals[self.signal] = g
@@ -230,7 +231,7 @@ class FiniteLimit:
 
     def decide(self, facts: Facts) -> Result:
         parts = [facts.needs(facts.converges, self.g, "→ 0")]
-        xs = list(facts.plain(_column(self.x)))
+        xs = list(facts.plain(as_column(self.x)))
         cons = [sympy.expand(facts.plain(c)) for c in self.constraints]
         if self.g not in facts.converges or facts.converges[self.g][1] is None:
             return _result(self.name, Status.UNDECIDED, parts[0][1])

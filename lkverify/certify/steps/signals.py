@@ -62,28 +62,14 @@ import sympy
 from ...errors import InputError
 from ...report.results import Result
 from ...status import Status
+from ...declare.vectors import as_column, quad as _quad
 from ..matrices import matrix_positive_definite
 
 __all__ = ["Barbalat", "BoundedStates", "Conserved", "Dissipation", "Facts", "LevelSet", "SquareIntegrable",
            "bounded_in_t", "decide_all"]
 
 
-def _weakest(statuses) -> Status:
-    statuses = list(statuses)
-    for s in (Status.FAILED, Status.UNDECIDED, Status.SIMULATED, Status.ESTIMATED, Status.CERTIFIED):
-        if s in statuses:
-            return s
-    return Status.EXACT
-
-
-def _column(x) -> sympy.Matrix:
-    m = x if isinstance(x, sympy.MatrixBase) else sympy.Matrix([x])
-    return sympy.Matrix(m).reshape(len(m), 1)
-
-
-def _quad(z, Q) -> sympy.Expr:
-    z = _column(z)
-    return (z.T * sympy.Matrix(Q) * z)[0, 0]
+_weakest = Status.weakest
 
 
 def bounded_in_t(expr) -> tuple:
@@ -276,7 +262,7 @@ class Dissipation:
         psd = matrix_positive_definite(sympy.Matrix(self.S).xreplace(facts.sub), name="S", semidefinite=True)
         status = _weakest([ident.status, psd.status])
         facts.nonincreasing[facts.plain(self.V)] = status
-        facts.dissipation = (status, facts.plain(_column(self.q)), sympy.Matrix(self.S).xreplace(facts.sub), psd)
+        facts.dissipation = (status, facts.plain(as_column(self.q)), sympy.Matrix(self.S).xreplace(facts.sub), psd)
         detail = (f"V̇ along the system equals −qᵀSq: {ident.detail}; S ⪰ 0: {psd.detail}; hence V(t) ≤ V(0) "
                   f"on every solution" if status.is_proof else
                   f"identity: {ident.status} ({ident.detail}); S ⪰ 0: {psd.status} ({psd.detail})")
@@ -313,7 +299,7 @@ class LevelSet:
     def decide(self, facts: Facts) -> Result:
         from ...symbolic.polynomial import compare_polynomials
 
-        z = sympy.Matrix.vstack(*[_column(x) for _, x in self.signals])
+        z = sympy.Matrix.vstack(*[as_column(x) for _, x in self.signals])
         Q = sympy.Matrix(self.Q).xreplace(facts.sub)
         ident = compare_polynomials(self.name, [("V", facts.plain(self.V))], [("½zᵀQz", facts.plain(_quad(z, Q) / 2))],
                                     reference="V as a quadratic form in z")
@@ -323,7 +309,7 @@ class LevelSet:
         status = _weakest([ident.status, pd.status, rest])
         why = ("V nonincreasing: no earlier link proves it" if down is None else f"V nonincreasing ({down})")
         for n, x in self.signals:
-            facts.signals[n] = facts.plain(_column(x))
+            facts.signals[n] = facts.plain(as_column(x))
             facts.bounded[n] = (status, "a block of z in the level set of V")
         detail = (f"V = ½zᵀQz identically ({ident.status}), Q ≻ 0 ({pd.status}: {pd.detail}), {why}: "
                   f"λ_min(Q)‖z(t)‖² ≤ 2V(t) ≤ 2V(0), so {', '.join(n for n, _ in self.signals)} stay bounded"
@@ -352,7 +338,7 @@ class Conserved:
     def decide(self, facts: Facts) -> Result:
         from ...symbolic.polynomial import compare_polynomials
 
-        x = _column(self.x)
+        x = as_column(self.x)
         res = compare_polynomials(self.name, [("d/dt‖x‖²", facts.rate(_quad(x, sympy.eye(len(x)))))], [("0", 0)],
                                   reference=f"d/dt‖{self.signal}‖²")
         facts.signals[self.signal] = facts.plain(x)
@@ -474,7 +460,7 @@ class SquareIntegrable:
     def decide(self, facts: Facts) -> Result:
         from ...symbolic.polynomial import compare_polynomials
 
-        f = _column(self.f)
+        f = as_column(self.f)
         left = [("fᵀKf", facts.plain(_quad(f, sympy.Matrix(self.K).xreplace(facts.sub))))]
         left += [(f"r{k + 1}ᵀS{k + 1}r{k + 1}", facts.plain(_quad(r, sympy.Matrix(S).xreplace(facts.sub))))
                  for k, (r, S) in enumerate(self.remainder)]
