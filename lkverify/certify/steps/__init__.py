@@ -39,6 +39,7 @@ from .rules import (CauchySchwarz, Context, Equal, Nonpositive, Printed, Rayleig
 from .witnesses import UnsupportedClaim, Witness, search_witness
 from .timevarying import TimeVaryingRate, UpperBound, sup_in_t, sup_on
 from .signals import Barbalat, BoundedStates, Conserved, Dissipation, Facts, LevelSet, SquareIntegrable
+from .forgetting import Forgetting
 from .limits import BoundedSignal, Chetaev, Comparison, Decided, FiniteLimit, Follows, LaSalle, LinearLimit
 
 __all__ = ["Auto", "BoundClaim", "CauchySchwarz", "ChainResult", "Context", "Decay", "Equal", "Measure", "Nonpositive",
@@ -51,4 +52,4 @@ __all__ = ["Auto", "BoundClaim", "CauchySchwarz", "ChainResult", "Context", "Dec
            "memory_integral_of", "memory_measure"]
 __all__ += ["TimeVaryingRate", "UpperBound", "sup_in_t", "sup_on", "lyapunov_steps"]
 __all__ += ["Barbalat", "BoundedSignal", "BoundedStates", "Chetaev", "Comparison", "Conserved", "Dissipation", "Facts",
-            "Decided", "FiniteLimit", "Follows", "LaSalle", "LevelSet", "LinearLimit", "SquareIntegrable"]
+            "Decided", "FiniteLimit", "Follows", "Forgetting", "LaSalle", "LevelSet", "LinearLimit", "SquareIntegrable"]

@@ -66,7 +66,7 @@ from ...declare.vectors import as_column, quad as _quad
 from ..matrices import matrix_positive_definite
 
 __all__ = ["Barbalat", "BoundedStates", "Conserved", "Dissipation", "Facts", "LevelSet", "SquareIntegrable",
-           "bounded_in_t", "decide_all"]
+           "bounded_in_t", "decide_all", "sup_bound"]
 
 
 _weakest = Status.weakest
@@ -114,6 +114,46 @@ def bounded_in_t(expr) -> tuple:
     if ok(e):
         return Status.EXACT, f"{e}: built from constants, sin, cos and decaying exponentials (bounded on t ≥ 0)"
     return Status.UNDECIDED, f"{e}: not recognised as bounded on t ≥ 0 (sums and products of sin, cos, exp(−at))"
+
+
+def sup_bound(expr):
+    """An exact upper bound of sup_{t ≥ 0} |expr(t)|, or None when it cannot be read off.
+
+    Built term by term: |c| for a real constant, 1 for sin and cos of a real argument, exp(b) for
+    exp(a·t + b) with a ≤ 0 (a, b real numbers), sums by the triangle inequality, products and
+    nonnegative integer powers multiplicatively.  The bound is sound, not tight
+    (|sin t + cos t| ≤ 2, the supremum is √2).
+
+    >>> t = sympy.Symbol("t", real=True)
+    >>> [sup_bound(e) for e in (sympy.sin(t) / 2 - sympy.cos(3 * t / 4) / 3, 2 * sympy.exp(-t) * sympy.cos(t) ** 2)]
+    [5/6, 2]
+    >>> sup_bound(t * sympy.sin(t)) is None, sup_bound(sympy.exp(t)) is None
+    (True, True)
+    """
+    from ...declare.symbols import t
+
+    def bound(x):
+        if not x.free_symbols:
+            return abs(x) if x.is_real is True and x.is_finite is True else None
+        if isinstance(x, (sympy.sin, sympy.cos)):
+            return sympy.Integer(1) if x.args[0].is_real is True else None
+        if isinstance(x, sympy.exp):
+            arg = sympy.expand(x.args[0])
+            a, rest = arg.coeff(t, 1), sympy.expand(arg - arg.coeff(t, 1) * t)
+            ok = not (a.free_symbols or rest.free_symbols) and a.is_real and a <= 0 and rest.is_real
+            return sympy.exp(rest) if ok else None
+        if isinstance(x, sympy.Add):
+            parts = [bound(y) for y in x.args]
+            return None if any(b is None for b in parts) else sympy.Add(*parts)
+        if isinstance(x, sympy.Mul):
+            parts = [bound(y) for y in x.args]
+            return None if any(b is None for b in parts) else sympy.Mul(*parts)
+        if isinstance(x, sympy.Pow) and x.exp.is_Integer and x.exp >= 0:
+            b = bound(x.base)
+            return None if b is None else b ** x.exp
+        return None
+
+    return bound(sympy.sympify(expr))
 
 
 class Facts:
