@@ -141,6 +141,10 @@ class SignalTheorem(Theorem):
         links.append(Link("conclusion", Status.EXACT if ready else None,
                           f"{self.conclusion}: follows from the links above" if ready else "rests on the links above"))
         verdict = theorem_verdict(links)
+        extra = [r for r in results if r.kind == "hypothesis" and r not in hyps]
+        if ready and extra:
+            verdict += "; under the additional hypotheses (derived where the paper's step is false): " + "; ".join(
+                f"{r.name} ({r.detail})" for r in extra)
         if ready and self.conclusion:
             verdict += f"; concluded: {self.conclusion}"
         if findings:

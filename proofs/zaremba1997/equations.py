@@ -17,7 +17,8 @@ with ``--set``):
 * inertia M = diag(3, 4, 5) (true; the estimates θ_r start at (2, 2, 2), i.e. a third to
   a half too small);
 * kᵢ = 1, 2, 3 (distinct, as (2.1) requires), Λ = 2, K_d = 4I, Γ = 2I (Theorem 1);
-* K_p = 10, α = 30, λ_c = 1, λ0 = 2, k0 = 10, λ1 = 1/2 (Theorem 2; α > λ_cσ_M² = 25);
+* K_p = 10, α = 50, λ_c = 1, λ0 = 2, k0 = 10, λ1 = 1/2 (Theorem 2; α > λ_cσ_M² = 25, and α > 40.28,
+  the additional hypothesis of the corrected (3.10′), :mod:`.corrected`);
 * cᵢ the body axes; ω_d(t) = (½ sin t, ½ cos(3t/4), ⅓ sin(t/3)) — a bounded motion with
   ω̇_d bounded (Theorem 1's hypothesis), rich enough for persistent excitation (3.5).
 
@@ -49,7 +50,7 @@ Lam = P.scalar("Lam", positive=True, default=2, latex=r"\Lambda", description="�
 Kd = P.spd_matrix("Kd", 3, default="diag(4,4,4)", latex="K_d", description="gain of (2.7)")
 Gamma = P.spd_matrix("Gamma", 3, default="diag(2,2,2)", latex=r"\Gamma", description="adaptation gain of (2.8)")
 Kp = P.scalar("Kp", positive=True, default=10, latex="K_p", description="K_p of (3.1), (3.2)")
-alpha = P.scalar("alpha", positive=True, default=30, latex=r"\alpha", description="α > λ_c σ_M² of (3.2)")
+alpha = P.scalar("alpha", positive=True, default=50, latex=r"\alpha", description="α > λ_c σ_M² of (3.2)")
 lam_c = P.scalar("lam_c", positive=True, default=1, latex=r"\lambda_c")
 lam0 = P.scalar("lam0", positive=True, default=2, latex=r"\lambda_0", description="λ0 of (3.4)")
 k0 = P.scalar("k0", positive=True, default=10, latex="k_0", description="k0 ≥ ‖Γ(0)‖ of (3.4)")

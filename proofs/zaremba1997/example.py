@@ -19,7 +19,7 @@ claims report the time from which that error stays below 1e-2 (about 9 s for the
 Claims (status ``simulated``): the tracking runs converge (Theorem 1 slowly at this instance: its run
 goes to t = 320 and the error stays below 1e-2 from t ≈ 270, while θ_r drifts far from θ, even through
 negative "inertias" — nothing in Theorem 1 keeps θ_r near θ; Theorem 2's error is below 1e-2 from
-t ≈ 7.3); θ_r stays bounded; the composite run's
+t ≈ 6.7 at α = 50); θ_r stays bounded; the composite run's
 θ_r approaches θ, at an observed exponential rate compared with the γ/2 that (3.12) gives for
 ‖θ_e‖ (γ = min{λ_c, λ_cλ1/2, 2} with λ1 the smallest λ(t) of the run); both runs started 0.01 rad
 from the other equilibrium leave it (distance 0.014 → past 0.5) and reach the programmed motion.
@@ -32,13 +32,14 @@ import dataclasses
 import numpy as np
 import sympy
 
-from lkverify import Run, Series, StepControl, Until, t
+from lkverify import Run, Series, Status, StepControl, Until, t
 from lkverify.catalogue.examples import Example
 from lkverify.simulate.experiments import RunClaim
 
 from .equations import PAPER, P, closed_loop2, frobenius_law, system1
 
-__all__ = ["example", "system2_sim", "INITIAL", "NEAR_OTHER", "Tracks", "Leaves", "EstimatesBounded",
+__all__ = ["example", "system2_sim", "INITIAL", "NEAR_OTHER", "LEVEL", "Tracks", "Leaves", "EstimatesBounded", "InLevelSet",
+           "lyapunov_along",
            "EstimatesConverge", "rotation", "reference", "errors", "lambda_along"]
 
 #: the loop of Theorem 2 as simulated: λ(t) = λ0(1 − ‖Γ‖_F/k0), Γ = (Γ⁻¹)⁻¹
@@ -218,6 +219,57 @@ class Leaves(RunClaim):
                          + f"; at the end the distance to the programmed s = c is {att:.3g}")
 
 
+def lyapunov_along(tr):
+    """V of (3.1) along a run of the composite loop: ½[vᵀMv + θ_eᵀΓ⁻¹θ_e + K_pV_δ + ‖Mv − ε − φᵀθ_e‖²]."""
+    v = tr.values
+    M = np.array(v["M"].tolist(), dtype=float)
+    cs = _c(v)
+    ks = [float(v[f"k{i}"]) for i in (1, 2, 3)]
+    S = [tr.states[f"s{i}"] for i in (1, 2, 3)]
+    e = sum(k * np.cross(s, c) for k, s, c in zip(ks, S, cs))
+    vv = tr.states["omega"] - (reference(v, tr.t) - float(v["Lam"]) * e)
+    th_e = tr.states["theta_r"] - np.diag(M)
+    out = []
+    for i in range(len(tr.t)):
+        g = tr.states["G"][i]
+        Gm = np.array([[g[0], g[1], g[2]], [g[1], g[3], g[4]], [g[2], g[4], g[5]]])
+        ph = tr.states["phi"][i].reshape(3, 3)
+        eta = M @ vv[i] - tr.states["eps"][i] - ph.T @ th_e[i]
+        Vd = sum(k * np.sum((c - s[i]) ** 2) for k, s, c in zip(ks, S, cs))
+        out.append(0.5 * (vv[i] @ M @ vv[i] + th_e[i] @ Gm @ th_e[i] + float(v["Kp"]) * Vd + eta @ eta))
+    return np.array(out)
+
+
+@dataclasses.dataclass(frozen=True)
+class InLevelSet(RunClaim):
+    """The corrected step (3.10′) along a run from V(0) < V0: V stays nonincreasing (to ``rtol`` of V(0)) and
+    ‖ω‖ ≤ W (the constants of :func:`~.corrected.level_constants`)."""
+
+    run: str
+    rtol: float = 1e-4
+
+    @property
+    def name(self):
+        return f"{self.run}: V nonincreasing, ‖ω‖ ≤ W (3.10′)"
+
+    def check(self, example, trajectories):
+        from .corrected import level_constants
+
+        tr = trajectories[self.run]
+        k = level_constants(tr.values)
+        if k["w_bar"] is None or k["status"] is not Status.EXACT:
+            return self._res(False, None, f"no level set at these values: {k.get('why', 'the additional hypothesis fails')}")
+        V = lyapunov_along(tr)
+        V0, W = float(k["V0"]), float(k["W"])
+        rise = float(np.max(np.diff(V))) if len(V) > 1 else 0.0
+        w_max = float(np.max(np.linalg.norm(tr.states["omega"], axis=1)))
+        ok = V[0] < V0 and rise <= self.rtol * V[0] and w_max <= W
+        return self._res(ok, {"V0": V0, "V_start": float(V[0]), "V_end": float(V[-1]), "largest_rise": rise,
+                              "omega_max": w_max, "W": W},
+                         f"V from {V[0]:.3g} (< V0 = {V0:.3g}) to {V[-1]:.3g}, largest rise between samples {rise:.2g} "
+                         f"(allowed {self.rtol:g}·V(0)); max ‖ω‖ = {w_max:.3g} ≤ W = {W:.3g}")
+
+
 #: the tracking runs go on (the horizon doubled from t = 20) until max(‖e‖, ‖ω − ω_d‖) < TARGET, at most to T_MAX
 TARGET, T_MAX = 1e-2, 1280.0
 
@@ -229,13 +281,20 @@ def tracking_error(tr):
 
 
 T1, T1_OTHER, T2, T2_OTHER = ("Theorem 1", "Theorem 1 near (−c1, c2, −c3)", "Theorem 2", "Theorem 2 near (−c1, c2, −c3)")
+T2_LEVEL = "Theorem 2 in {V < V0}"
+_R_LEVEL = rotation([1, 1, 1], 0.005)
+_E_LEVEL = sum(k * np.cross(_R_LEVEL[:, i], np.eye(3)[i]) for i, k in enumerate((1.0, 2.0, 3.0)))
+#: V(0) ≈ 1.3e-3 < V0 = 5.3e-3: a 0.005 rad attitude error, v(0) = (0.01, 0, 0), θ_r(0) = θ + (0.05, 0, 0)
+LEVEL = {"omega": list(np.array(_WD0) - 2.0 * _E_LEVEL + np.array([0.01, 0.0, 0.0])), **_triad(_R_LEVEL),
+         "theta_r": [_THETA[0] + 0.05, _THETA[1], _THETA[2]], **{"eps": [0.0] * 3, "phi": [0.0] * 9,
+                                                                 "G": [0.2, 0.0, 0.0, 0.2, 0.0, 0.2]}}
 
 example = Example(
     "example",
     title="Paper 004: adaptive tracking with unknown inertia, Theorems 1 and 2",
     runs=[Run(T1, system1, {}, INITIAL, until=Until(tracking_error, TARGET, T_MAX)), Run(T1_OTHER, system1, {}, NEAR_OTHER),
           Run(T2, system2_sim, {}, {**INITIAL, **_COMPOSITE}, until=Until(tracking_error, TARGET, T_MAX)),
-          Run(T2_OTHER, system2_sim, {}, {**NEAR_OTHER, **_COMPOSITE})],
+          Run(T2_OTHER, system2_sim, {}, {**NEAR_OTHER, **_COMPOSITE}), Run(T2_LEVEL, system2_sim, {}, LEVEL)],
     t_end=20,
     series=[Series("‖θ_r − θ‖", lambda st: np.linalg.norm(st["theta_r"] - np.array(_THETA), axis=1)),
             Series("θ_r,1", lambda st: st["theta_r"][:, 0]), Series("θ_r,2", lambda st: st["theta_r"][:, 1]),
@@ -244,7 +303,7 @@ example = Example(
     distance=lambda st: np.sqrt(sum(np.sum((st[f"s{i + 1}"] - np.eye(3)[i]) ** 2, axis=1) for i in range(3))),
     distance_panel=True,      # the attitude error √Σ‖sᵢ − cᵢ‖² on its own (log) panel below each run
     claims=[Tracks(T1, tol=TARGET), EstimatesBounded(T1), Leaves(T1_OTHER), Tracks(T2, tol=TARGET), EstimatesBounded(T2),
-            EstimatesConverge(T2, ratio=0.5), Leaves(T2_OTHER)],
+            EstimatesConverge(T2, ratio=0.5), Leaves(T2_OTHER), InLevelSet(T2_LEVEL)],
     ylabel="θ_r (dashed: the true θ)",
     samples=601,
     step=StepControl(rtol=1e-6, atol=1e-8),

@@ -42,7 +42,7 @@ from .equations import (PAPER, Kp, Lam, M, P, alpha, c1, c2, c3, composite_laws,
                         omega_e, s1, s2, s3, system1, system2, theta, e)
 
 __all__ = ["theorem2", "Abstract", "abstract_loop", "reduce_det", "gamma_coefficients", "theorem2_results",
-           "bound_310_results", "GAMMA_PRINTED"]
+           "bound_310_results", "GAMMA_PRINTED", "isolated_equilibrium", "property_b"]
 
 _DINV = sympy.Symbol("DINV", real=True)
 
@@ -263,8 +263,10 @@ def _sigma_M_from(a):
     return max(a.M.eigenvals(multiple=True))
 
 
-def gamma_coefficients(values, gamma=None):
+def gamma_coefficients(values, gamma=None, *, eta=None):
     """−(RHS of (3.10)) − γV on D, as coefficients of the nonnegative quantities (must all be ≥ 0).
+
+    ``eta``: the coefficient of −‖η‖² in the bound (default λ_c/2, as printed; (3.10′) has λ_c/4).
 
     With qv = vᵀMv, qη = ‖η‖², qθ = θ_eᵀΓ⁻¹θ_e, V = ½(qv + qθ + K_pV_δ + qη) (3.1), λ = λ1 + δ (δ ≥ 0,
     property (b)) and, on D, eᵀe = V_δ/Λ + σ (σ > 0).  Returns (γ, {quantity: coefficient}, γ_max)
@@ -273,7 +275,8 @@ def gamma_coefficients(values, gamma=None):
     g = sympy.Symbol("gamma")
     qv, qeta, qth, Vd, sig, dl = sympy.symbols("qv qeta qtheta Vdelta sigma delta", nonnegative=True)
     lc, kp, L, l1 = (sympy.sympify(values[k]) for k in ("lam_c", "Kp", "Lam", "lam1"))
-    rhs = -lc * qv - lc / 2 * qeta - lc / 4 * (l1 + dl) * qth - kp * L * (Vd / L + sig)   # (3.10) on D
+    ce = lc / 2 if eta is None else sympy.sympify(eta)
+    rhs = -lc * qv - ce * qeta - lc / 4 * (l1 + dl) * qth - kp * L * (Vd / L + sig)      # (3.10) on D
     V = (qv + qth + kp * Vd + qeta) / 2                                                 # (3.1)
     E = sympy.expand(-(rhs + g * V))
     quantities = {"vᵀMv": qv, "‖η‖²": qeta, "θ_eᵀΓ⁻¹θ_e": qth, "δ·θ_eᵀΓ⁻¹θ_e": dl * qth, "V_δ": Vd, "σ": sig}
@@ -319,13 +322,15 @@ _RUNS = Memo(1)  # the derivations of the last values: the derivations, the link
 def _derived(values):
     """theorem2_results, bound_310_results, gamma_results and chetaev_results at these values (once per process)."""
     from .chetaev import chetaev_results
+    from .corrected import corrected_results
 
     key = tuple(sorted((k, str(v)) for k, v in values.items()))
     hit = _RUNS.get(key)
     if hit is None:
         out, a, derived, printed = theorem2_results(values)
         hit = _RUNS[key] = {"identities": out, "310": bound_310_results(a, derived, printed),
-                            "gamma": gamma_results(values), "chetaev": chetaev_results(a, derived)}
+                            "gamma": gamma_results(values), "chetaev": chetaev_results(a, derived),
+                            "corrected": corrected_results(a, derived, values)}
     return hit
 
 
@@ -347,11 +352,11 @@ def _identities(values):
 
 def _findings(values):
     d = _derived(values)
-    return ([r for r in d["identities"] if r.name not in _DERIVATIONS] + [d["310"][0], d["310"][1], d["gamma"][1]]
+    return ([r for r in d["identities"] if r.name not in _DERIVATIONS] + list(d["310"]) + list(d["gamma"])
             + d["chetaev"])
 
 
-def chetaev_link(values, rate_status):
+def chetaev_link(values, rate_status, rate="V̇_c = 2V̇ < 0 where V_c < 0, i.e. (3.10)"):
     """Chetaev's theorem for s* = (−c1, c2, −c3) (Theorem 2 (в)) with V_c of (3.11) (K_p and ‖η‖²).
 
     At s*, v = 0, θ_e = 0, η = 0 the terms vᵀMv, θ_eᵀΓ⁻¹θ_e, ‖η‖² vanish, and along the rotations of the
@@ -376,42 +381,209 @@ def chetaev_link(values, rate_status):
     Vc = sympy.sympify(values["Kp"]) * signed
     point = {x: v for Sx, st in zip(S, star) for x, v in zip(Sx, st)}
     curve = {x: v for Sx, st in zip(S, star) for x, v in zip(Sx, R * st)}
-    return Chetaev(Vc, point, curve, eps_, ("V̇_c = 2V̇ < 0 where V_c < 0, i.e. (3.10)", rate_status),
+    return Chetaev(Vc, point, curve, eps_, (rate, rate_status),
                    name="(в) Chetaev: s = (−c1, c2, −c3) unstable")
 
 
-def argument(values):
-    """The links after the derived pieces of V̇: (3.10), (3.12) on D, (3.5), the convergence, Chetaev (3.11)."""
-    from lkverify.certify.steps import Decided, Follows
+def isolated_equilibrium(values) -> Result:
+    """s* = (−c1, c2, −c3) is an isolated zero of e = Σkᵢsᵢ × cᵢ on the triads: with sᵢ = R(p)s*ᵢ (Cayley,
+    R(0) = I) the Jacobian ∂e/∂p at p = 0 is nonsingular (exact), so near s* only s* has e = 0."""
+    sub = P.substitution({k: x for k, x in values.items() if not k.startswith("wd")})
+    C = [sympy.Matrix(c.xreplace(sub)) for c in (c1, c2, c3)]
+    ks = [sympy.sympify(k).xreplace(sub) for k in (k1, k2, k3)]
+    p = sympy.symbols("p1:4", real=True)
+    K = sympy.Matrix([[0, -p[2], p[1]], [p[2], 0, -p[0]], [-p[1], p[0], 0]])
+    R = (sympy.eye(3) - K).inv() * (sympy.eye(3) + K)
+    star = [-C[0], C[1], -C[2]]
+    e_ = sum((k * cross(R * st, c) for k, st, c in zip(ks, star, C)), sympy.zeros(3, 1))
+    at0 = {x: 0 for x in p}
+    J = e_.jacobian(list(p)).xreplace(at0).applyfunc(sympy.simplify)
+    det = sympy.simplify(J.det())
+    zero = all(sympy.simplify(x) == 0 for x in e_.xreplace(at0))
+    ok = zero and det != 0
+    status = Status.EXACT if ok else (Status.FAILED if not zero else Status.UNDECIDED)   # det = 0 refutes nothing
+    return Result("bound", "s* = (−c1, c2, −c3) an isolated zero of e on the triads", status, str(det), f"e(s*) = 0: {zero}; det ∂e/∂p at s* = {det} (exact; k1, k2, k3 = "
+                  f"{', '.join(map(str, ks))})" + ("" if ok else ": not shown isolated"))
 
+
+class _Chain:
+    """The links of :func:`argument`, each recording its status when decided, so a later link rests on the
+    status an earlier one actually got (``prior(name)``)."""
+
+    def __init__(self):
+        self.done = {}
+
+    def prior(self, name):
+        return lambda facts: self.done.get(name, Status.UNDECIDED)
+
+    def decided(self, name, compute):
+        from lkverify.certify.steps import Decided
+
+        def run(facts):
+            res = compute(facts)
+            self.done[name] = res.status
+            return res
+
+        return Decided(name, run)
+
+    def rests(self, name, premises, licence, kind="bound"):
+        """A link that holds as well as the weakest of ``premises`` ((label, Status or callable facts → Status)),
+        evaluated when the chain reaches it."""
+        def compute(facts):
+            pairs = [(n, st(facts) if callable(st) else st) for n, st in premises]
+            status = Status.weakest(st for _, st in pairs)
+            return Result(kind, name, status, None,
+                          f"{licence}; rests on " + ", ".join(f"{n} ({st})" for n, st in pairs))
+
+        return self.decided(name, compute)
+
+
+def _gain_bounded(facts):
+    return facts.bounded.get("(Γ⁻¹)⁻¹", (Status.UNDECIDED,))[0]
+
+
+def _rates_bounded(values):
+    """v̇ and ė along the loop: polynomials in ω, sᵢ, θ_r and the references (no Γ, φ, ε, λ)?"""
+    from .equations import omega, s1, s2, s3, theta_r, v, e
+
+    def compute(facts):
+        allowed = {facts.plain(x) for st in (omega, s1, s2, s3, theta_r) for x in st(t)}
+        parts, refs = [], set()
+        for name, sig in (("v", v), ("e", e)):
+            for k in range(3):
+                rate = sympy.expand(facts.rate(sig[k]))
+                extra = {x for x in rate.free_symbols if x not in allowed}
+                ref = {x for x in extra if str(x).startswith("wd")}
+                refs |= ref
+                if extra - ref:
+                    parts.append((Status.FAILED, f"d/dt {name}_{k + 1} contains {sorted(map(str, extra - ref))}"))
+                    continue
+                try:
+                    poly = sympy.Poly(rate, *sorted(allowed | ref, key=str))
+                    ok = not any(c.free_symbols for c in poly.coeffs())
+                except sympy.PolynomialError:
+                    ok = False
+                parts.append((Status.EXACT if ok else Status.UNDECIDED,
+                              f"d/dt {name}_{k + 1} {'is' if ok else 'is not'} a polynomial in ω, sᵢ, θ_r, ω_d, ω̇_d"))
+        for x in sorted(refs, key=str):
+            parts.append(facts.reference_bounded(x))
+        status = Status.weakest(st for st, _ in parts)
+        bad = [why for st, why in parts if not st.is_proof]
+        return Result("bound", "v̇, ė bounded on {V < V0}", status, None,
+                      "; ".join(bad) if bad else "v̇ and ė are polynomials in ω, sᵢ, θ_r and the bounded references "
+                      "(no Γ, φ, ε or λ): bounded where ω, sᵢ (‖sᵢ − cᵢ‖² ≤ 2V0/(K_pkᵢ)) and θ_r "
+                      "(‖θ_e‖² ≤ 2k0V0 by Γ⁻¹ ⪰ I/k0) are")
+
+    return compute
+
+
+def property_b(values, beta1):
+    """(b) of (3.4) for t ≥ T + δ from (3.5) along the loop with β1/2: Γ⁻¹(t) ⪰ (λ_c/2)e^{−λ_cλ0δ/2}(β1/2)I, so
+    ‖Γ‖ ≤ k1 = 4e^{λ_cλ0δ/2}/(λ_cβ1) and λ ≥ λ1* = λ0(1 − k1/k0) (certified with arb); (status, detail)."""
+    import flint
+
+    from lkverify.certify.intervals.rounding import float_down, float_up
+
+    if beta1 is None or not beta1 > 0:
+        return Status.UNDECIDED, "no certified β1 > 0 of ∫φφᵀ"
+
+    def ball(x):
+        x = sympy.Rational(sympy.sympify(x))
+        return flint.arb(int(x.p)) / int(x.q)
+
+    lc, l0, kk, dl, l1 = (values[k] for k in ("lam_c", "lam0", "k0", "delta", "lam1"))
+    with flint.ctx.workprec(128):
+        k1 = 4 * (ball(lc) * ball(l0) * ball(dl) / 2).exp() / (ball(lc) * flint.arb(beta1))
+        lam1_star = ball(l0) * (1 - k1 / ball(kk))
+    k1_up, star = float_up(k1), float_down(lam1_star)
+    text = (f"Γ⁻¹ ⪰ (λ_c/2)e^{{−λ_cλ0δ/2}}(β1/2)I for t ≥ T + δ (λ ≤ λ0), so ‖Γ‖ ≤ k1 = 4e^{{λ_cλ0δ/2}}/(λ_cβ1) "
+            f"≤ {k1_up:.4g} (β1 = {beta1:.4g} certified)")
+    if not star > 0:
+        return Status.UNDECIDED, f"{text} ≥ k0 = {kk}: this bound gives no λ1 > 0 (not refuted)"
+    if not star >= float(sympy.Rational(sympy.sympify(l1))):
+        return Status.UNDECIDED, (f"{text} < k0 = {kk}: λ ≥ λ1* = λ0(1 − k1/k0) ≥ {star:.4g}, below the λ1 = {l1} "
+                                  f"of γ (not refuted)")
+    return Status.CERTIFIED, f"{text} < k0 = {kk}: λ(t) ≥ λ1* ≥ {star:.4g} ≥ λ1 = {l1} for t ≥ T + δ"
+
+
+def argument(values):
+    """The links after the derived pieces of V̇, on the corrected step (3.10′) of :mod:`.corrected`: (3.4) (a),
+    the level set, L2, Barbalat ((2.3)), (3.5), (b), (3.12′) on D, θ_r → θ, Chetaev (3.11)."""
+    from lkverify.certify.steps import Forgetting
+
+    from .corrected import additional_hypotheses
+    from .equations import G_matrix, k0, lam0, phi_matrix
     from .excitation import excitation_bounds
 
     d = _derived(values)
-    along, gamma_step = d["310"][2], d["gamma"][0]
+    cor = d["corrected"]
+    k = cor["constants"]
+    add = additional_hypotheses(values)[0]
     chet = {r.name: r.status for r in d["chetaev"]}
+    iso = isolated_equilibrium(values)
     pe = excitation_bounds(values)
+    lc = sympy.sympify(values["lam_c"])
+    step = Status.weakest([cor["identity"].status, cor["A"].status, cor["lagrange"].status])
+    W, V0 = k.get("W"), k.get("V0")
 
     def pe_result(facts):
         st = Status.weakest(b.status for b in pe.values())
-        return Result("constant", "(3.5)", st, {k: (b.beta1, b.beta2) for k, b in pe.items()},
-                      "; ".join(f"∫{k}: {b.detail}" for k, b in pe.items()))
+        return Result("constant", "(3.5)", st, {n: (b.beta1, b.beta2) for n, b in pe.items()},
+                      "; ".join(f"∫{n}: {b.detail}" for n, b in pe.items()))
 
+    gam, coeffs, gmax = gamma_coefficients(values, eta=lc / 4)
+    gam_ok = Status.EXACT if all(c >= 0 for c in gamma_coefficients(values, gmax, eta=lc / 4)[1].values()) \
+        else Status.FAILED
+    beta1 = pe["φφᵀ"].beta1 if pe["φφᵀ"].status.is_proof else None
+    b_status, b_detail = property_b(values, beta1)
+    ch = _Chain()
+    s310 = "(3.10′) wherever ‖ω‖ ≤ W: V̇ ≤ −λ_cvᵀMv − (λ_c/4)‖η‖² − (λ_c/4)λ‖θ_e‖²_Γ⁻¹ − K_pΛeᵀe"
+    level = f"‖ω‖ ≤ W on {{V ≤ V0}}, V0 = {V0}"
+    inv, l2, rates = "{V < V0} positively invariant, V nonincreasing on it", "v, e ∈ L2", "v̇, ė bounded on {V < V0}"
+    poly_rates = "v̇, ė polynomials in ω, sᵢ, θ_r, ω_d, ω̇_d"
+    goal, pe_name = "(2.3): e → 0, ω → ω_d (Barbalat, Lemma 1)", "persistent excitation (3.5): β1, β2 along the programmed motion"
+    loop_pe, prop_b = "(3.5) along the loop's φ for t ≥ T", "(b) of (3.4): λ(t) ≥ λ1 for t ≥ T + δ"
+    added = "additional hypothesis (derived)"
     links = [
-        Decided("(3.10): V̇ ≤ −λ_cvᵀMv − (λ_c/2)‖η‖² − (λ_c/4)λ‖θ_e‖²_Γ⁻¹ − K_pΛeᵀe along the loop",
-                lambda facts: along),
-        Follows("(3.12): V̇ + γV ≤ 0 on D (3.6)", (("(3.10) along the loop", along.status),
-                                                  ("−(3.10) − γV ≥ 0 on D, γ = min{λ_c, λ_cλ1/2, 2}",
-                                                   gamma_step.status)),
-                "V̇ ≤ (3.10) ≤ −γV on D"),
-        Decided("persistent excitation (3.5): β1, β2 along the programmed motion", pe_result),
-        Follows("θ_r → θ, ε → 0 exponentially (PE)",
-                (("(3.12) V̇ + γV ≤ 0 on D", Status.weakest([along.status, gamma_step.status])),
-                 ("(3.5) certified", pe_result(None).status),
-                 ("(3.4) properties (a), (b): ‖Γ‖ ≤ k0 and λ(t) ≥ λ1 under (3.5)", Status.UNDECIDED)),
-                "V → 0 exponentially on D bounds ‖η‖, ‖v‖ and θ_eᵀΓ⁻¹θ_e, and Γ⁻¹ ≥ (λ1-dependent) I under "
-                "(3.5) turns the last into ‖θ_e‖ → 0 (properties (a), (b) of (3.4) are not encoded)"),
-        chetaev_link(values, Status.weakest([along.status, chet.get("(3.11) with K_p and ‖η‖²: V̇_c = 2V̇",
-                                                                    Status.UNDECIDED)])),
+        ch.decided(added, lambda facts: add),
+        Forgetting("Γ⁻¹", G_matrix(), phi_matrix(), lam_c / 2, lam, lam0, k0, inverse="Γ"),
+        ch.decided(s310, lambda facts: Result("bound", s310, step, {"W": str(W)},
+                                              f"W = {W}: {cor['identity'].detail}; {cor['A'].detail}; "
+                                              f"{cor['lagrange'].detail}")),
+        ch.rests(level, ((added, ch.prior(added)), ("Γ⁻¹ ≻ 0 (a)", _gain_bounded),
+                         (cor["level"].name, cor["level"].status)),
+                 f"V ≥ ½σ_m‖v‖², V ≥ ½K_pV_δ (Γ⁻¹ ≻ 0): ‖ω‖ ≤ w̄ + κ_V·V0^{{1/2}} ≤ W"
+                 f" (w̄ = {k.get('w_bar')}, κ_V = {k.get('kappa_V')})"),
+        ch.rests(inv, (("(3.10′)", ch.prior(s310)), (level, ch.prior(level)), ("λ ≥ 0 (a)", _gain_bounded)),
+                 "V̇ ≤ (3.10′) ≤ 0 on {V ≤ V0}: at a first time with V = V0, V(t) ≤ V(0) < V0 — so for the initial "
+                 "data with V(0) < V0 (the statement is semi-global)"),
+        ch.rests(l2, (("(3.10′)", ch.prior(s310)), (inv, ch.prior(inv))),
+                 "∫_0^∞(λ_cσ_m‖v‖² + K_pΛ‖e‖²) ≤ V(0) by (3.10′) on the invariant level set"),
+        ch.decided(poly_rates, _rates_bounded(values)),
+        ch.rests(rates, ((poly_rates, ch.prior(poly_rates)), (level, ch.prior(level)), ("(a): θ_r bounded", _gain_bounded)),
+                 "v̇, ė are polynomials in ω, sᵢ, θ_r and the references, each bounded on {V < V0}: ‖ω‖ ≤ W, "
+                 "‖sᵢ − cᵢ‖² ≤ 2V0/(K_pkᵢ), ‖θ_e‖² ≤ 2k0V0 (Γ⁻¹ ⪰ I/k0)"),
+        ch.rests(goal, ((l2, ch.prior(l2)), (rates, ch.prior(rates))),
+                 "v, e ∈ L2 with bounded derivatives tend to 0 (Lemma 1), and ω − ω_d = v − Λe"),
+        ch.decided(pe_name, pe_result),
+        ch.rests(loop_pe, ((goal, ch.prior(goal)), (pe_name, ch.prior(pe_name))),
+                 "with e, ė, v → 0 ((2.3)) Y_c tends uniformly to its value on the programmed motion, the filter "
+                 "φ̇ = −λ_cφ + Y_cᵀ is stable, so ∫_t^{t+δ}φφᵀ ⪰ (β1/2)I for t ≥ some T (T not computed)"),
+        ch.rests(prop_b, ((loop_pe, ch.prior(loop_pe)), ("(a)", _gain_bounded), ("k1 < k0, λ1 ≤ λ1*", b_status)),
+                 b_detail),
+        ch.rests("(3.12′): V̇ + γ′V ≤ 0 on D (3.6) for t ≥ T + δ",
+                 (("(3.10′)", ch.prior(s310)), (inv, ch.prior(inv)), ("(b)", ch.prior(prop_b)),
+                  (f"−(3.10′) − γ′V ≥ 0 on D, γ′ = {gmax}", gam_ok)),
+                 f"the coefficients of −(3.10′) − γV on D are ≥ 0 iff γ ≤ γ′ = {gmax} (min{{λ_c/2, λ_cλ1/2, 2}}; "
+                 f"printed γ = min{{λ_c, λ_cλ1/2, 2}} = {GAMMA_PRINTED(values)})"),
+        ch.rests("(а), (б): θ_r → θ, ε → 0 (PE)",
+                 (("(b)", ch.prior(prop_b)), ("(a)", _gain_bounded), (l2, ch.prior(l2)), (goal, ch.prior(goal))),
+                 "λ ≥ λ1 > 0 and Γ⁻¹ ⪰ I/k0 make θ_e ∈ L2 by (3.10′); θ̇_e bounded (Γ ≤ k0, φ, ε bounded) gives "
+                 "θ_e → 0; η ∈ L2 ∩ L∞ with η̇ bounded gives η → 0, so ε = Mv − φᵀθ_e − η → 0"),
+        chetaev_link(values, Status.weakest([step, add.status, iso.status,
+                                             chet.get("(3.11) with K_p and ‖η‖²: V̇_c = 2V̇", Status.UNDECIDED)]),
+                     rate=f"V̇_c = 2V̇ ≤ 2(3.10′) < 0 where V_c < 0 near s*: ‖ω − ω_d‖ < W − w̄ there, and e ≠ 0 "
+                          f"(V_c < 0 needs s ≠ s*, and {iso.name}: {iso.detail})"),
     ]
     return links, {f"wd{i}": values[f"wd{i}"] for i in (1, 2, 3)}
 
@@ -419,7 +591,8 @@ def argument(values):
 theorem2 = SignalTheorem(
     "theorem2", system=system2, hypotheses=[_hypotheses], derivations=[_identities], argument=argument,
     findings=[_findings], paper=PAPER, derivations_link="V̇ of (3.1) piece by piece along the loop",
-    relevant=("M", "k1", "k2", "k3", "Lam", "Kp", "alpha", "lam_c", "lam1", "delta", "wd1", "wd2", "wd3"),
-    conclusion="θ_r → θ, ε → 0 exponentially on D; s = (−c1, c2, −c3) unstable",
-    title="Theorem 2: V (3.1) along (1.3), (1.4), (3.2)–(3.4) piece by piece; (3.10), (3.12) on D, persistent "
-          "excitation (3.5) certified, Chetaev (3.11)")
+    relevant=("M", "k1", "k2", "k3", "Lam", "Kp", "alpha", "lam_c", "lam0", "k0", "lam1", "delta", "wd1", "wd2", "wd3"),
+    conclusion="(2.3) e → 0, ω → ω_d; θ_r → θ, ε → 0; V̇ + γ′V ≤ 0 on D; s = (−c1, c2, −c3) unstable — from "
+               "initial data with V(0) < V0",
+    title="Theorem 2: V (3.1) along (1.3), (1.4), (3.2)–(3.4) piece by piece; the printed (3.10) refuted, the chain "
+          "on the corrected (3.10′): level set, Barbalat, persistent excitation (3.5) certified, (3.12′), Chetaev")

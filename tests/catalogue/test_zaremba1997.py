@@ -16,6 +16,7 @@ eq = importlib.import_module("lkverify.proofs.zaremba1997.equations")
 par = importlib.import_module("lkverify.proofs.zaremba1997.parametrisation")
 th1 = importlib.import_module("lkverify.proofs.zaremba1997.theorem1")
 th2 = importlib.import_module("lkverify.proofs.zaremba1997.theorem2")
+cor = importlib.import_module("lkverify.proofs.zaremba1997.corrected")
 ex210 = importlib.import_module("lkverify.proofs.zaremba1997.example210")
 ex313 = importlib.import_module("lkverify.proofs.zaremba1997.example313")
 exc = importlib.import_module("lkverify.proofs.zaremba1997.excitation")
@@ -108,9 +109,7 @@ def test_theorem2_findings(theorem2_default):
     assert st["(3.9) second line = first line (as printed)"] is Status.FAILED
     assert st["(3.9) second line with −(λ_c/2)‖η‖² = first line"] is Status.EXACT
     assert st["(3.10) from the printed pieces: Q ⪰ 0 (Young's step, μ = 2σ_M)"] is Status.EXACT
-    links = {link.name: link.status for link in theorem2_default.chain}
-    assert links["(3.10): V̇ ≤ −λ_cvᵀMv − (λ_c/2)‖η‖² − (λ_c/4)λ‖θ_e‖²_Γ⁻¹ − K_pΛeᵀe along the loop"] is Status.FAILED
-    assert links["(3.12): V̇ + γV ≤ 0 on D (3.6)"] is Status.FAILED          # it rests on (3.10)
+    assert st["(3.10) along the true loop (1.3), (3.2)–(3.4)"] is Status.FAILED   # a finding: the chain runs on (3.10′)
     assert th2.gamma_results(DEFAULTS)[0].status is Status.EXACT               # the step from (3.10) itself
     assert st["γ of (3.12) against the largest γ of this step"] is Status.EXACT
     assert st["(3.11): the signed sum has the rate of V_δ along (1.4)"] is Status.EXACT
@@ -190,17 +189,93 @@ def test_excitation_constants_too_large_are_refuted():
     assert [r.status for r in res] == [Status.UNDECIDED, Status.UNDECIDED]
 
 
-def test_theorem2_chain_lists_excitation_and_chetaev():
+def test_theorem2_chain_runs_on_the_corrected_step():
     rep = theorem2.run({})
     links = {link.name: link for link in rep.chain}
-    assert rep.exit_code == 1 and rep.verdict.startswith("not established: (3.10)")
+    # at the defaults the chain stops at property (b): the bound k1 of ‖Γ‖ exceeds k0 (not refuted)
+    assert rep.exit_code == 1 and rep.verdict.startswith("undecided: (b) of (3.4)")
+    assert "≥ k0 = 10: this bound gives no λ1 > 0" in rep.verdict
+    assert links["additional hypothesis (derived)"].status is Status.EXACT
     assert links["persistent excitation (3.5): β1, β2 along the programmed motion"].status is Status.CERTIFIED
+    assert links["(2.3): e → 0, ω → ω_d (Barbalat, Lemma 1)"].status is Status.EXACT
     chetaev = links["(в) Chetaev: s = (−c1, c2, −c3) unstable"]
-    assert chetaev.status is Status.FAILED and "(3.10) (failed)" in chetaev.detail      # rests on (3.10)
-    assert "V(x*) = 0" in chetaev.detail and "V < 0 on (0, 1)" in chetaev.detail        # the rest is exact
+    assert chetaev.status is Status.EXACT and "(3.10′)" in chetaev.detail
+    assert "V(x*) = 0" in chetaev.detail and "V < 0 on (0, 1)" in chetaev.detail
     assert links["conclusion"].status is None
-    # property (b) of (3.4) is not encoded: the PE conclusion is not proved even if (3.10) were
-    assert "(3.4) properties (a), (b)" in links["θ_r → θ, ε → 0 exponentially (PE)"].detail
+
+
+def test_theorem2_established_under_the_additional_hypothesis():
+    rep = theorem2.run({"lam0": "1/100", "k0": "100", "lam1": "1/200"})
+    assert rep.verdict.startswith("established")            # exit 1: the printed formulas it refutes
+    assert "under the additional hypotheses (derived where the paper's step is false)" in rep.verdict
+    assert "α = 50, λ_cσ_M² + σ_M²w̄²/λ_c = " in rep.verdict
+    assert "(3.10) along the true loop (1.3), (3.2)–(3.4) failed" in rep.verdict   # the print stays refuted
+    # λ1 above what the bound gives: undecided, not established
+    rep = theorem2.run({"lam0": "1/100", "k0": "100", "lam1": "1/50"})
+    assert rep.verdict.startswith("undecided: (b) of (3.4)") and "below the λ1 = 1/50" in rep.verdict
+
+
+def test_theorem2_alpha_below_the_derived_threshold():
+    rep = theorem2.run({"alpha": "40"})                        # > λ_cσ_M² = 25 (the paper's), < 40.28 (derived)
+    links = {link.name: link for link in rep.chain}
+    assert links["hypotheses"].status is Status.EXACT
+    assert links["additional hypothesis (derived)"].status is Status.FAILED
+    assert rep.verdict.startswith("not established: additional hypothesis (derived)")
+    assert links["(в) Chetaev: s = (−c1, c2, −c3) unstable"].status is Status.FAILED
+    v = P.resolve({"alpha": "41"}, use_defaults=True)          # just above: a small level set
+    k = cor.level_constants(v)
+    assert k["status"] is Status.EXACT and k["V0"] > 0 and k["V0"] < sympy.Rational(1, 10 ** 4)
+
+
+def _corrected(values=DEFAULTS, **kw):
+    out, a, derived, printed = th2.theorem2_results(values)
+    return a, derived, cor.corrected_results(a, derived, values, **kw)
+
+
+def test_corrected_step_pieces_and_mutations():
+    from lkverify import cross, dot
+    from lkverify.symbolic.polynomial import compare_polynomials
+    a, derived, r = _corrected()
+    assert [r[x].status for x in ("identity", "A", "lagrange", "level")] == [Status.EXACT] * 4
+    k = r["constants"]
+    # the level set keeps ‖ω‖ ≤ W: w̄ + κ_V·V0^{1/2} ≤ W, exactly
+    assert k["W"] > k["w_bar"] and k["kappa_V"] ** 2 * k["V0"] <= (k["W"] - k["w_bar"]) ** 2
+    assert k["w_bar"] ** 2 >= sympy.Rational(1, 4) + sympy.Rational(1, 4) + sympy.Rational(1, 9)
+    # a larger W: the identity still holds (c cancels), A ⪰ 0 is refuted
+    _, _, big = _corrected(W=k["W"] + sympy.Rational(1, 10 ** 6))
+    assert big["identity"].status is Status.EXACT and big["A"].status is Status.FAILED
+    # dropping the gyroscopic term from B (the paper's omission) is refuted
+    lc, g = a.q["lam_c"], cross(a.v, a.M * a.w)
+    full = derived["T1"] + derived["T23"] + derived["T4"]
+    rhs = a.poly(-lc * dot(a.v, a.M * a.v) - lc / 4 * dot(a.eta, a.eta) - a.q["Kp"] * a.q["Lam"] * dot(a.e, a.e)
+                 - lc / 4 * th2.lam * (a.th_e.T * a.Gm * a.th_e)[0, 0])
+    z, mv_e, c = a.ph.T * a.th_e, a.M * a.v - a.ep, k["c"]
+    A = ((a.q["alpha"] - c) * dot(a.v, a.v) - lc * dot(a.v, a.M * z) + lc / 4 * dot(z, z)
+         + lc / 2 * dot(mv_e, mv_e))
+    C = c * dot(a.v, a.v) - dot(g, g) / lc
+    dropped = compare_polynomials("x", [("R′", rhs), ("−A", -A), ("−(λ_c/4)‖η‖²", -lc / 4 * dot(a.eta, a.eta)),
+                                        ("−C", -C)], [("V̇", full)], R=a.R)
+    assert dropped.status is Status.FAILED
+    flipped = compare_polynomials("x", [("R′", rhs), ("−A", -A), ("−B", -lc / 4 * dot(a.eta - 2 * g / lc, a.eta - 2 * g / lc)),
+                                        ("−C", -C)], [("V̇", full)], R=a.R)
+    assert flipped.status is Status.FAILED                                   # the sign inside the square
+
+
+def test_sqrt_roundings():
+    for q in (sympy.Rational(2), sympy.Rational(1, 3), sympy.Rational(10 ** 9 + 7, 3), sympy.Rational(49, 4)):
+        up, down = cor.sqrt_up(q), cor.sqrt_down(q)
+        assert down ** 2 <= q <= up ** 2 and up - down <= sympy.Rational(2, 10 ** 6) * (1 + up)
+    with pytest.raises(ValueError):
+        cor.sqrt_up(-1)
+
+
+def test_property_b_bound():
+    v = P.resolve({"lam0": "1/100", "k0": "100", "lam1": "1/200"}, use_defaults=True)
+    st, why = th2.property_b(v, 0.1985)
+    assert st is Status.CERTIFIED and "≥ λ1 = 1/200" in why
+    st, why = th2.property_b(v, 0.01)                         # a weaker excitation: k1 ≥ k0
+    assert st is Status.UNDECIDED and "gives no λ1 > 0" in why
+    assert th2.property_b(v, None)[0] is Status.UNDECIDED
 
 
 def test_items_at_defaults():
@@ -298,3 +373,52 @@ def test_excitation_of_a_motion_it_cannot_certify_is_undecided_not_bad_input():
     v = P.resolve({"wd1": "sin(sqrt(2)*t)/2"}, use_defaults=True)      # an irrational frequency: valid input
     assert all(r.status is Status.UNDECIDED for r in excitation.run({"wd1": "sin(sqrt(2)*t)/2"}).results)
     assert all(pe.status is Status.UNDECIDED for pe in exc.excitation_bounds(v).values())
+
+
+def _level_run(initial=None, values=None, t_end=8):
+    mod = importlib.import_module("lkverify.proofs.zaremba1997.example")
+    from lkverify.catalogue.examples import Example
+    run = dataclasses.replace([r for r in mod.example.runs if r.label == mod.T2_LEVEL][0], history=initial or mod.LEVEL)
+    ex = Example("level", runs=[run], t_end=t_end, series=[], distance=lambda st: np.zeros(len(st["omega"])),
+                 claims=[mod.InLevelSet(mod.T2_LEVEL)], samples=401, step=mod.example.step)
+    rep = ex.run(values or {})
+    return [r for r in rep.results if r.name.startswith(mod.T2_LEVEL + ":")][0]
+
+
+def test_simulation_stays_in_the_level_set_of_the_corrected_step():
+    res = _level_run()
+    assert res.status is Status.SIMULATED and res.value["V_end"] < res.value["V_start"] < res.value["V0"]
+    assert res.value["omega_max"] <= res.value["W"]
+    mod = importlib.import_module("lkverify.proofs.zaremba1997.example")
+    outside = {**mod.LEVEL, "omega": list(np.array(mod.LEVEL["omega"]) + np.array([0.1, 0.0, 0.0]))}
+    res = _level_run(outside)                                   # V(0) ≈ 0.07 > V0: the claim does not hold
+    assert res.status is Status.FAILED and res.value["V_start"] > res.value["V0"]
+    res = _level_run(values={"alpha": "40"})                    # below the derived threshold: no level set
+    assert res.status is Status.FAILED and "no level set" in res.detail
+
+
+def test_isolated_equilibrium_and_rates_check():
+    assert th2.isolated_equilibrium(DEFAULTS).status is Status.EXACT              # det = −32
+    same = P.resolve({"k2": "3"}, use_defaults=True)                              # k2 = k3: det = 0, not shown
+    assert th2.isolated_equilibrium(same).status is Status.UNDECIDED
+
+    class Stub:                                    # a loop whose v̇ would contain the gain Γ (DINV) or a non-polynomial
+        def __init__(self, extra):
+            self.extra = extra
+
+        def plain(self, x):
+            from lkverify.symbolic.polynomial import plain
+            return plain(x)
+
+        def rate(self, x):
+            return self.extra
+
+        def reference_bounded(self, x):
+            return Status.EXACT, "bounded"
+
+    from lkverify.symbolic.polynomial import plain
+    w = plain(importlib.import_module("lkverify.proofs.zaremba1997.equations").omega(eq.t)[0])
+    check = th2._rates_bounded(DEFAULTS)
+    assert check(Stub(w ** 2 + 1)).status is Status.EXACT
+    assert check(Stub(w * th2._DINV)).status is Status.FAILED and "DINV" in check(Stub(w * th2._DINV)).detail
+    assert check(Stub(sympy.sin(w))).status is Status.UNDECIDED
