@@ -46,7 +46,7 @@ ROWS = (
     ('zaremba1997.parametrisation', 'zaremba1997', 'check', '(1.5) the printed Y term by term; (1.6); (2.1); ė; Lemma 2 (2.4); Lemma 3 (2.5)', 'zaremba1997'),
     ('zaremba1997.theorem1', 'zaremba1997', 'theorem', "Theorem 1: V (2.6) along (1.3), (1.4), (2.7), (2.8): V̇ = −vᵀK_d v (2.9), then bounded signals, v, e ∈ L2 and Barbalat's lemma: e → 0, ω → ω_d, sᵢ → ±cᵢ", 'zaremba1997'),
     ('zaremba1997.example210', 'zaremba1997', 'check', 'Example (2.10): (2.7) at ω_d = 0 derived and compared with its print', 'zaremba1997'),
-    ('zaremba1997.theorem2', 'zaremba1997', 'theorem', 'Theorem 2: V (3.1) along (1.3), (1.4), (3.2)–(3.4) piece by piece; (3.10), (3.12) on D, persistent excitation (3.5) certified, Chetaev (3.11)', 'zaremba1997'),
+    ('zaremba1997.theorem2', 'zaremba1997', 'theorem', 'Theorem 2: V (3.1) along (1.3), (1.4), (3.2)–(3.4) piece by piece; the printed (3.10) refuted, the chain on the corrected (3.10′): level set, Barbalat, persistent excitation (3.5) certified, (3.12′), Chetaev', 'zaremba1997'),
     ('zaremba1997.example313', 'zaremba1997', 'check', 'Pointing example: (3.13) from (3.2), the region (3.14) and how it changes with Λ', 'zaremba1997'),
     ('zaremba1997.excitation', 'zaremba1997', 'check', 'Persistent excitation (3.5): β1, β2 of the filter φ̇ = −λ_cφ + Y_cᵀ along the programmed motion ω_d(t), certified for every t ≥ 0', 'zaremba1997'),
     ('zaremba1997.example', 'zaremba1997', 'example', 'Paper 004: adaptive tracking with unknown inertia, Theorems 1 and 2', 'zaremba1997'),
