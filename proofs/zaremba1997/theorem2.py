@@ -350,10 +350,23 @@ def _identities(values):
     return [r for r in _derived(values)["identities"] if r.name in _DERIVATIONS]
 
 
+def property_b_printed(values) -> Result:
+    """(b) of (3.4) as printed, "λ(t) ≥ λ1 > 0 for every t ≥ 0", at initial data (3.4) admits: Γ(0) = k0·I has
+    ‖Γ(0)‖ = k0, so λ(0) = λ0(1 − ‖Γ(0)‖/k0) = 0 < λ1 (exact)."""
+    l0, kk, l1 = (sympy.sympify(values[k]) for k in ("lam0", "k0", "lam1"))
+    lam_0 = l0 * (1 - kk / kk)
+    ok = lam_0 >= l1
+    return Result("bound", "(b) of (3.4) as printed: λ(t) ≥ λ1 for every t ≥ 0", Status.EXACT if ok else Status.FAILED,
+                  {"lambda(0)": str(lam_0), "lam1": str(l1)},
+                  f"Γ(0) = k0·I = {kk}·I is admitted by (3.4) (Γ(0) = Γ(0)ᵀ > 0, ‖Γ(0)‖ ≤ k0) and gives "
+                  f"λ(0) = λ0(1 − ‖Γ(0)‖/k0) = {lam_0} < λ1 = {l1}: the bound holds only from some time on "
+                  f"(the chain uses t ≥ T + δ)")
+
+
 def _findings(values):
     d = _derived(values)
     return ([r for r in d["identities"] if r.name not in _DERIVATIONS] + list(d["310"]) + list(d["gamma"])
-            + d["chetaev"])
+            + d["chetaev"] + [property_b_printed(values)])
 
 
 def chetaev_link(values, rate_status, rate="V̇_c = 2V̇ < 0 where V_c < 0, i.e. (3.10)"):

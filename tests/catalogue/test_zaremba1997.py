@@ -115,6 +115,7 @@ def test_theorem2_findings(theorem2_default):
     assert st["(3.11): the signed sum has the rate of V_δ along (1.4)"] is Status.EXACT
     assert st["(3.11) as printed: V̇_c = 2V̇ (3.10)"] is Status.FAILED
     assert st["(3.11) with K_p and ‖η‖²: V̇_c = 2V̇"] is Status.EXACT
+    assert st["(b) of (3.4) as printed: λ(t) ≥ λ1 for every t ≥ 0"] is Status.FAILED       # λ(0) = 0 at ‖Γ(0)‖ = k0
 
 
 def test_wrong_gamma_refuted_and_reordered_gamma_passes():
