@@ -5,7 +5,17 @@ generated right-hand side ``rhs(t, y, Z, p, out)`` passed as a numba first-class
 (signature :data:`RHS_SIGNATURE`), so this kernel is compiled once per machine (numba's
 disk cache) whatever the system.  :func:`lkverify.simulate.batch.integrate` prepares its
 arguments and is the API; this module is numba code only (editing it recompiles the
-kernel, about 30 s).
+kernel: 3.8 s on the 2-core machine, ``benchmarks/bench_compile.py``).
+
+Compile time
+------------
+The kernel is one function with one explicit signature (:data:`_KERNEL`) and no jitted
+helpers, and the code of a stage (delayed values, dense output, rhs call) is written once,
+in a loop over the stages: numba's ``inline="always"`` copies and re-types a helper's IR at
+every call, and every separately compiled helper is re-optimised and re-emitted by LLVM
+inside each caller.  Measured cold (empty ``NUMBA_CACHE_DIR``, median of 3, 2 cores) with
+the warm run of paper 002's Fig. 1 on 300 points: helpers inlined 12.5 s, 89 ms; plain
+jitted helpers 7.7 s, 199 ms; this form 3.8 s, 77 ms (the same numbers bit for bit).
 
 Method (per point; the method of steps of :mod:`lkverify.simulate.solver`, compiled)
 -----------------------------------------------------------------------------------
@@ -103,266 +113,6 @@ _EPS = float(np.finfo(float).eps)
 _GROWTH = float(BLOWUP_GROWTH)
 _WINDOW = int(FLOOR_WINDOW)
 
-_jit = numba.njit(cache=True, error_model="numpy")
-#: the helpers of every step are inlined into the kernel (measured: 1.9 → 1.6 ms for 1216 steps of paper 002's system)
-_inline = numba.njit(cache=True, error_model="numpy", inline="always")
-
-
-@_inline
-def _dense(C, j, theta, out, ns):
-    """contd5 of stored step j at theta into out[:ns]."""
-    th1 = 1.0 - theta
-    for i in range(ns):
-        out[i] = C[j, 0, i] + theta * (C[j, 1, i] + th1 * (C[j, 2, i] + theta * (C[j, 3, i] + th1 * C[j, 4, i])))
-
-
-@_inline
-def _delayed(s, lags, t0, x0, Ht, Hh, C, m, hint, Z):
-    """Z[k] = y(s − lags[k]) (states): the constant history before t0, else the stored steps."""
-    ns = x0.shape[0]
-    for k in range(lags.shape[0]):
-        q = s - lags[k]
-        if q <= t0 or m == 0:
-            for i in range(ns):
-                Z[k, i] = x0[i]
-            continue
-        j = hint[k]
-        if j >= m:
-            j = m - 1
-        while j + 1 < m and Ht[j + 1] <= q:
-            j += 1
-        while j > 0 and Ht[j] > q:
-            j -= 1
-        hint[k] = j
-        _dense(C, j, (q - Ht[j]) / Hh[j], Z[k], ns)
-
-
-@_inline
-def _stage(rhs, s, ytmp, lags, t0, x0, Ht, Hh, C, m, hint, Z, p, out):
-    _delayed(s, lags, t0, x0, Ht, Hh, C, m, hint, Z)
-    rhs(s, ytmp, Z, p, out)
-
-
-@_inline
-def _norm2(y):
-    acc = 0.0
-    for v in y:
-        acc += v * v
-    return acc
-
-
-@_jit
-def _crossing(y, yn, K, h, t, bound, n):
-    """First time in [t, t + h] where ‖y‖ reaches bound, on the step's dense output (bisection); t + h if unknown."""
-    r = np.empty((5, n))
-    for i in range(n):
-        d = yn[i] - y[i]
-        b = h * K[0, i] - d
-        r[0, i], r[1, i], r[2, i] = y[i], d, b
-        r[3, i] = d - h * K[6, i] - b
-        r[4, i] = h * (_D1 * K[0, i] + _D3 * K[2, i] + _D4 * K[3, i] + _D5 * K[4, i] + _D6 * K[5, i] + _D7 * K[6, i])
-    if not (math.isfinite(_norm2(yn)) and _norm2(yn) > bound * bound):
-        return t + h
-    lo, hi = 0.0, 1.0
-    v = np.empty(n)
-    for _ in range(60):
-        mid = 0.5 * (lo + hi)
-        th1 = 1.0 - mid
-        for i in range(n):
-            v[i] = r[0, i] + mid * (r[1, i] + th1 * (r[2, i] + mid * (r[3, i] + th1 * r[4, i])))
-        if _norm2(v) > bound * bound:
-            hi = mid
-        else:
-            lo = mid
-    return t + hi * h
-
-
-@_jit
-def _initial_step(rhs, t0, y, f0, lags, x0, Ht, Hh, C, hint, Z, p, rtol, atol, hmax, ytmp, f1):
-    """Hairer's hinit for order 5 (the delayed values of the trial Euler step are history)."""
-    n = y.shape[0]
-    dnf, dny = 0.0, 0.0
-    for i in range(n):
-        sk = atol + rtol * abs(y[i])
-        dnf += (f0[i] / sk) ** 2
-        dny += (y[i] / sk) ** 2
-    h = 1e-6 if (dnf <= 1e-10 or dny <= 1e-10) else math.sqrt(dny / dnf) * 0.01
-    h = min(h, hmax)
-    for i in range(n):
-        ytmp[i] = y[i] + h * f0[i]
-    _stage(rhs, t0 + h, ytmp, lags, t0, x0, Ht, Hh, C, 0, hint, Z, p, f1)
-    der2 = 0.0
-    for i in range(n):
-        sk = atol + rtol * abs(y[i])
-        der2 += ((f1[i] - f0[i]) / sk) ** 2
-    der2 = math.sqrt(der2) / h
-    der12 = max(abs(der2), math.sqrt(dnf))
-    h1 = (0.01 / der12) ** 0.2 if der12 > 1e-15 else max(1e-6, h * 1e-3)
-    h = min(100.0 * h, h1, hmax)
-    return h if (h > 0.0 and math.isfinite(h)) else hmax
-
-
-@_jit
-def _move(Ht, Hh, C, Ht2, Hh2, C2, j, m, ns):
-    """Copy stored steps j .. j + m − 1 to 0 .. m − 1 of the second arrays (which may be the first)."""
-    for r in range(m):
-        Ht2[r], Hh2[r] = Ht[j + r], Hh[j + r]
-        for c in range(5):
-            for i in range(ns):
-                C2[r, c, i] = C[j + r, c, i]
-
-
-@_jit
-def _store(Ht, Hh, C, m, t, h, y, yn, K, ns, t_keep):
-    """Append the accepted step [t, t + h] (states' dense output); drop steps before t_keep when full."""
-    cap = Ht.shape[0]
-    if m == cap:
-        j = 0
-        while j + 2 < m and Ht[j + 2] <= t_keep:      # keep the step containing t_keep and one before it
-            j += 1
-        if j > 0:
-            m -= j
-            _move(Ht, Hh, C, Ht, Hh, C, j, m, ns)
-        if m > cap // 2:
-            Ht2, Hh2, C2 = np.empty(2 * cap), np.empty(2 * cap), np.empty((2 * cap, 5, ns))
-            _move(Ht, Hh, C, Ht2, Hh2, C2, 0, m, ns)
-            Ht, Hh, C = Ht2, Hh2, C2
-    Ht[m], Hh[m] = t, h
-    for i in range(ns):
-        d = yn[i] - y[i]
-        b = h * K[0, i] - d
-        C[m, 0, i], C[m, 1, i], C[m, 2, i] = y[i], d, b
-        C[m, 3, i] = d - h * K[6, i] - b
-        C[m, 4, i] = h * (_D1 * K[0, i] + _D3 * K[2, i] + _D4 * K[3, i] + _D5 * K[4, i] + _D6 * K[5, i]
-                          + _D7 * K[6, i])
-    return Ht, Hh, C, m + 1
-
-
-@_inline
-def _landing(t, h, target, hmax):
-    """(step, lands on target): stretched by up to 1 % (never beyond hmax) or cut to land on the target."""
-    if (t + 1.01 * h >= target and target - t <= hmax) or t + h >= target:
-        return target - t, True
-    return h, False
-
-
-@_inline
-def _control(err, h, facold, rejected):
-    """Hairer's PI step-size control: (accepted, next step size, facold)."""
-    if not math.isfinite(err):
-        return False, h * _FAC1, facold
-    fac11 = err ** _EXPO1
-    if err > 1.0:
-        return False, h / min(1.0 / _FAC1, fac11 / _SAFE), facold
-    h_new = h / max(1.0 / _FAC2, min(1.0 / _FAC1, fac11 / facold ** _BETA / _SAFE))
-    return True, (min(h_new, h) if rejected else h_new), max(err, 1e-4)
-
-
-@_inline
-def _attempt(rhs, p, t, h, t_new, y, K, yt, yn, lags, t0, x0, Ht, Hh, C, m, hint, Z, rtol, atol):
-    """Stages 2–7 of a DOPRI5 step from (t, y), K[0] = f(t, y): yn the new state, K[6] = f(t_new, yn); error norm."""
-    n = y.shape[0]
-    for i in range(n):
-        yt[i] = y[i] + h * _A21 * K[0, i]
-    _stage(rhs, t + _C2 * h, yt, lags, t0, x0, Ht, Hh, C, m, hint, Z, p, K[1])
-    for i in range(n):
-        yt[i] = y[i] + h * (_A31 * K[0, i] + _A32 * K[1, i])
-    _stage(rhs, t + _C3 * h, yt, lags, t0, x0, Ht, Hh, C, m, hint, Z, p, K[2])
-    for i in range(n):
-        yt[i] = y[i] + h * (_A41 * K[0, i] + _A42 * K[1, i] + _A43 * K[2, i])
-    _stage(rhs, t + _C4 * h, yt, lags, t0, x0, Ht, Hh, C, m, hint, Z, p, K[3])
-    for i in range(n):
-        yt[i] = y[i] + h * (_A51 * K[0, i] + _A52 * K[1, i] + _A53 * K[2, i] + _A54 * K[3, i])
-    _stage(rhs, t + _C5 * h, yt, lags, t0, x0, Ht, Hh, C, m, hint, Z, p, K[4])
-    for i in range(n):
-        yt[i] = y[i] + h * (_A61 * K[0, i] + _A62 * K[1, i] + _A63 * K[2, i] + _A64 * K[3, i] + _A65 * K[4, i])
-    _delayed(t_new, lags, t0, x0, Ht, Hh, C, m, hint, Z)        # stages 6 and 7 share the time t + h
-    rhs(t_new, yt, Z, p, K[5])
-    for i in range(n):
-        yn[i] = y[i] + h * (_A71 * K[0, i] + _A73 * K[2, i] + _A74 * K[3, i] + _A75 * K[4, i] + _A76 * K[5, i])
-    rhs(t_new, yn, Z, p, K[6])
-    err = 0.0
-    for i in range(n):
-        e = h * (_E1 * K[0, i] + _E3 * K[2, i] + _E4 * K[3, i] + _E5 * K[4, i] + _E6 * K[5, i] + _E7 * K[6, i])
-        sk = atol + rtol * max(abs(y[i]), abs(yn[i]))
-        err += (e / sk) ** 2
-    return math.sqrt(err / n)
-
-
-@_jit
-def _run_point(rhs, p, y0, x0, lags, targets, t0, t_eval, rtol, atol, bound, max_steps, floor, out):
-    """One point: (outcome code, t_fail, accepted steps, rhs evaluations, rejected steps); samples into out."""
-    n, ns, nl = y0.shape[0], x0.shape[0], lags.shape[0]
-    t_end = targets[targets.shape[0] - 1]
-    hmax, lag_max = t_end - t0, 0.0
-    for k in range(nl):
-        hmax = min(hmax, lags[k])
-        lag_max = max(lag_max, lags[k])
-    Ht, Hh, C = np.empty(64), np.empty(64), np.empty((64, 5, ns))
-    m = 0
-    hint = np.zeros(max(nl, 1), dtype=np.int64)
-    Z = np.empty((nl, ns))
-    K = np.empty((7, n))
-    y, yn, yt = np.empty(n), np.empty(n), np.empty(n)
-    for i in range(n):
-        y[i] = y0[i]
-    ke, n_eval = 0, t_eval.shape[0]
-    while ke < n_eval and t_eval[ke] <= t0:
-        for i in range(ns):      # element by element: a slice assignment compiles numba's shape-error formatting
-            out[ke, i] = y[i]
-        ke += 1
-    if not _norm2(y) <= bound * bound:
-        return _DIVERGED, t0, 0, 0, 0
-    _stage(rhs, t0, y, lags, t0, x0, Ht, Hh, C, m, hint, Z, p, K[0])
-    if not math.isfinite(_norm2(K[0])):
-        return _DIVERGED, t0, 0, 1, 0
-    h = _initial_step(rhs, t0, y, K[0], lags, x0, Ht, Hh, C, hint, Z, p, rtol, atol, hmax, yt, K[1])
-    nfev, n_steps, n_rej = 2, 0, 0
-    scale = max(1.0, math.sqrt(_norm2(y)))
-    recent = np.zeros(_WINDOW)
-    recent_sum = 0.0
-    t, it, facold, rejected, bad = t0, 0, 1e-4, False, False
-    while True:
-        h_prop = min(h, hmax)
-        h, landing = _landing(t, h_prop, targets[it], hmax)
-        if h <= 10.0 * _EPS * abs(t):
-            return (_DIVERGED if bad else _COLLAPSE), t, n_steps, nfev, n_rej
-        t_new = targets[it] if landing else t + h
-        err = _attempt(rhs, p, t, h, t_new, y, K, yt, yn, lags, t0, x0, Ht, Hh, C, m, hint, Z, rtol, atol)
-        nfev += 6
-        accepted, h_new, facold = _control(err, h, facold, rejected)
-        rejected = not accepted
-        if not accepted:
-            n_rej += 1
-            bad = bad or not math.isfinite(err)
-            h = h_new
-            continue
-        n_steps += 1
-        Ht, Hh, C, m = _store(Ht, Hh, C, m, t, h, y, yn, K, ns, t - lag_max)
-        while ke < n_eval and t_eval[ke] <= t_new:
-            _dense(C, m - 1, (t_eval[ke] - t) / h, out[ke], ns)
-            ke += 1
-        yy = _norm2(yn)
-        if not yy <= bound * bound:
-            return _DIVERGED, _crossing(y, yn, K, h, t, bound, n), n_steps, nfev, n_rej
-        for i in range(n):
-            y[i] = yn[i]
-            K[0, i] = K[6, i]
-        slot = n_steps % _WINDOW
-        recent_sum += h - recent[slot]
-        recent[slot] = h
-        t = t_new
-        if landing:
-            it += 1
-            if it == targets.shape[0]:
-                return _SUCCESS, t, n_steps, nfev, n_rej
-            h_new = max(h_new, h_prop)
-        if n_steps >= _WINDOW and recent_sum / _WINDOW < floor:
-            return (_DIVERGED if math.sqrt(yy) > _GROWTH * scale else _COLLAPSE), t, n_steps, nfev, n_rej
-        if n_steps >= max_steps:
-            return _BUDGET, t, n_steps, nfev, n_rej
-        h = h_new
-
 
 _KERNEL = types.void(_RHS, _mat, _mat, _vec, _mat, _mat, types.int64[::1], _f8, _vec, _f8, _f8, _f8, _i8, _f8,
                      types.int64[::1], types.float64[:, :, ::1], types.int64[::1], _vec, types.int64[:, ::1])
@@ -370,7 +120,7 @@ _KERNEL = types.void(_RHS, _mat, _mat, _vec, _mat, _mat, types.int64[::1], _f8, 
 
 @numba.njit(_KERNEL, cache=True, error_model="numpy")
 def run_batch(rhs, P, Y0, x0, lags, targets, counts, t0, t_eval, rtol, atol, bound, max_steps, floor, skip, out,
-               code, t_fail, stats):
+              code, t_fail, stats):
     """Every point ``i`` with ``skip[i] == 0``, one after the other.
 
     ``P`` (N, k) the points, ``Y0`` (N, n) initial vectors (auxiliary states included), ``x0`` (n_states,)
@@ -378,11 +128,253 @@ def run_batch(rhs, P, Y0, x0, lags, targets, counts, t0, t_eval, rtol, atol, bou
     t_end.  Writes the samples at ``t_eval`` into ``out`` (N, m, n_states; untouched after a failure), the
     outcome codes into ``code``, the end or failure time into ``t_fail`` and (accepted steps, rhs
     evaluations, rejected steps) into ``stats``.
+
+    One function, no helpers (see Compile time in the module docstring); a point's run ends by setting
+    ``outcome`` (≥ 0) and leaving the step loop.
     """
-    for i in range(P.shape[0]):
-        if skip[i]:
+    n, ns, nl, n_eval = Y0.shape[1], x0.shape[0], lags.shape[1], t_eval.shape[0]
+    for pt in range(P.shape[0]):
+        if skip[pt]:
             continue
-        c, tf, ns, nf, nr = _run_point(rhs, P[i], Y0[i], x0, lags[i], targets[i, :counts[i]], t0, t_eval, rtol,
-                                       atol, bound, max_steps, floor, out[i])
-        code[i], t_fail[i] = c, tf
-        stats[i, 0], stats[i, 1], stats[i, 2] = ns, nf, nr
+        p, lag, o = P[pt], lags[pt], out[pt]
+        n_targets = counts[pt]
+        t_end = targets[pt, n_targets - 1]
+        hmax, lag_max = t_end - t0, 0.0
+        for k in range(nl):
+            hmax = min(hmax, lag[k])
+            lag_max = max(lag_max, lag[k])
+        # the accepted steps: start Ht, length Hh, contd5 coefficients C of all n components (the states' serve
+        # the delayed values and the samples, all of them the divergence crossing); m of them, room for cap
+        cap, m = 64, 0
+        Ht, Hh, C = np.empty(cap), np.empty(cap), np.empty((cap, 5, n))
+        hint = np.empty(max(nl, 1), dtype=np.int64)      # per lag: the stored step of its last delayed value
+        for k in range(nl):
+            hint[k] = 0
+        Z = np.empty((nl, ns))
+        K = np.empty((7, n))
+        y, yn, yt = np.empty(n), np.empty(n), np.empty(n)
+        yy = 0.0
+        for i in range(n):
+            y[i] = Y0[pt, i]
+            yy += y[i] * y[i]
+        ke = 0
+        while ke < n_eval and t_eval[ke] <= t0:
+            for i in range(ns):      # element by element: a slice assignment compiles numba's shape-error formatting
+                o[ke, i] = y[i]
+            ke += 1
+        outcome, t, n_steps, nfev, n_rej = -1, t0, 0, 0, 0
+        if not yy <= bound * bound:
+            outcome = _DIVERGED
+        else:
+            for k in range(nl):      # every delayed argument of the first two evaluations is history
+                for i in range(ns):
+                    Z[k, i] = x0[i]
+            rhs(t0, y, Z, p, K[0])
+            nfev = 1
+            acc = 0.0
+            for i in range(n):
+                acc += K[0, i] * K[0, i]
+            if not math.isfinite(acc):
+                outcome = _DIVERGED
+        if outcome < 0:
+            # the first step: Hairer's hinit for order 5 (the delayed values of the trial Euler step are history)
+            dnf, dny = 0.0, 0.0
+            for i in range(n):
+                sk = atol + rtol * abs(y[i])
+                dnf += (K[0, i] / sk) ** 2
+                dny += (y[i] / sk) ** 2
+            h = 1e-6 if (dnf <= 1e-10 or dny <= 1e-10) else math.sqrt(dny / dnf) * 0.01
+            h = min(h, hmax)
+            for i in range(n):
+                yt[i] = y[i] + h * K[0, i]
+            rhs(t0 + h, yt, Z, p, K[1])
+            nfev = 2
+            der2 = 0.0
+            for i in range(n):
+                sk = atol + rtol * abs(y[i])
+                der2 += ((K[1, i] - K[0, i]) / sk) ** 2
+            der2 = math.sqrt(der2) / h
+            der12 = max(abs(der2), math.sqrt(dnf))
+            h1 = (0.01 / der12) ** 0.2 if der12 > 1e-15 else max(1e-6, h * 1e-3)
+            h = min(100.0 * h, h1, hmax)
+            if not (h > 0.0 and math.isfinite(h)):
+                h = hmax
+            scale = max(1.0, math.sqrt(yy))
+            recent = np.empty(_WINDOW)       # the last _WINDOW accepted step sizes
+            for i in range(_WINDOW):
+                recent[i] = 0.0
+            recent_sum = 0.0
+            it, facold, rejected, bad = 0, 1e-4, False, False
+        while outcome < 0:
+            # the step: stretched by up to 1 % (never beyond hmax) or cut to land on the next target
+            h_prop = min(h, hmax)
+            h = h_prop
+            target = targets[pt, it]
+            landing = (t + 1.01 * h >= target and target - t <= hmax) or t + h >= target
+            if landing:
+                h = target - t
+            if h <= 10.0 * _EPS * abs(t):
+                outcome = _DIVERGED if bad else _COLLAPSE
+                break
+            t_new = target if landing else t + h
+            # stages 2–7 from (t, y), K[0] = f(t, y): yt the stage state, yn the new state, K[6] = f(t_new, yn)
+            for st in range(1, 7):
+                if st == 1:
+                    s = t + _C2 * h
+                    for i in range(n):
+                        yt[i] = y[i] + h * _A21 * K[0, i]
+                elif st == 2:
+                    s = t + _C3 * h
+                    for i in range(n):
+                        yt[i] = y[i] + h * (_A31 * K[0, i] + _A32 * K[1, i])
+                elif st == 3:
+                    s = t + _C4 * h
+                    for i in range(n):
+                        yt[i] = y[i] + h * (_A41 * K[0, i] + _A42 * K[1, i] + _A43 * K[2, i])
+                elif st == 4:
+                    s = t + _C5 * h
+                    for i in range(n):
+                        yt[i] = y[i] + h * (_A51 * K[0, i] + _A52 * K[1, i] + _A53 * K[2, i] + _A54 * K[3, i])
+                elif st == 5:
+                    s = t_new
+                    for i in range(n):
+                        yt[i] = y[i] + h * (_A61 * K[0, i] + _A62 * K[1, i] + _A63 * K[2, i] + _A64 * K[3, i]
+                                            + _A65 * K[4, i])
+                else:
+                    s = t_new
+                    for i in range(n):
+                        yn[i] = y[i] + h * (_A71 * K[0, i] + _A73 * K[2, i] + _A74 * K[3, i] + _A75 * K[4, i]
+                                            + _A76 * K[5, i])
+                if st < 6:           # stages 6 and 7 share the time t + h, hence the delayed values
+                    # Z[k] = y(s − lags[k]) (states): the constant history before t0, else the stored step
+                    # containing it (a moving pointer) at theta, by contd5
+                    for k in range(nl):
+                        q = s - lag[k]
+                        if q <= t0 or m == 0:
+                            for i in range(ns):
+                                Z[k, i] = x0[i]
+                            continue
+                        j = hint[k]
+                        if j >= m:
+                            j = m - 1
+                        while j + 1 < m and Ht[j + 1] <= q:
+                            j += 1
+                        while j > 0 and Ht[j] > q:
+                            j -= 1
+                        hint[k] = j
+                        theta = (q - Ht[j]) / Hh[j]
+                        th1 = 1.0 - theta
+                        for i in range(ns):
+                            Z[k, i] = C[j, 0, i] + theta * (C[j, 1, i] + th1 * (C[j, 2, i] + theta * (
+                                C[j, 3, i] + th1 * C[j, 4, i])))
+                rhs(s, yt if st < 6 else yn, Z, p, K[st])
+            nfev += 6
+            err = 0.0
+            for i in range(n):
+                e = h * (_E1 * K[0, i] + _E3 * K[2, i] + _E4 * K[3, i] + _E5 * K[4, i] + _E6 * K[5, i]
+                         + _E7 * K[6, i])
+                sk = atol + rtol * max(abs(y[i]), abs(yn[i]))
+                err += (e / sk) ** 2
+            err = math.sqrt(err / n)
+            # Hairer's PI step-size control: accepted?, the next step size h_new, facold
+            if not math.isfinite(err):
+                accepted, h_new = False, h * _FAC1
+            else:
+                fac11 = err ** _EXPO1
+                if err > 1.0:
+                    accepted, h_new = False, h / min(1.0 / _FAC1, fac11 / _SAFE)
+                else:
+                    h_new = h / max(1.0 / _FAC2, min(1.0 / _FAC1, fac11 / facold ** _BETA / _SAFE))
+                    if rejected:
+                        h_new = min(h_new, h)
+                    accepted, facold = True, max(err, 1e-4)
+            rejected = not accepted
+            if not accepted:
+                n_rej += 1
+                bad = bad or not math.isfinite(err)
+                h = h_new
+                continue
+            n_steps += 1
+            # store the accepted step [t, t + h]; when full, drop the steps before t − lag_max (keeping the one
+            # containing it and one before), into arrays twice as long if more than half would stay
+            if m == cap:
+                j = 0
+                while j + 2 < m and Ht[j + 2] <= t - lag_max:
+                    j += 1
+                Ht2, Hh2, C2 = Ht, Hh, C
+                if m - j > cap // 2:
+                    cap *= 2
+                    Ht2, Hh2, C2 = np.empty(cap), np.empty(cap), np.empty((cap, 5, n))
+                m -= j
+                for r in range(m):               # forward: in place when the arrays stay
+                    Ht2[r] = Ht[j + r]
+                    Hh2[r] = Hh[j + r]
+                    for c in range(5):
+                        for i in range(n):
+                            C2[r, c, i] = C[j + r, c, i]
+                Ht, Hh, C = Ht2, Hh2, C2
+            Ht[m] = t
+            Hh[m] = h
+            yy = 0.0
+            for i in range(n):
+                d = yn[i] - y[i]
+                b = h * K[0, i] - d
+                C[m, 0, i] = y[i]
+                C[m, 1, i] = d
+                C[m, 2, i] = b
+                C[m, 3, i] = d - h * K[6, i] - b
+                C[m, 4, i] = h * (_D1 * K[0, i] + _D3 * K[2, i] + _D4 * K[3, i] + _D5 * K[4, i] + _D6 * K[5, i]
+                                  + _D7 * K[6, i])
+                yy += yn[i] * yn[i]
+            m += 1
+            while ke < n_eval and t_eval[ke] <= t_new:
+                theta = (t_eval[ke] - t) / h
+                th1 = 1.0 - theta
+                for i in range(ns):
+                    o[ke, i] = C[m - 1, 0, i] + theta * (C[m - 1, 1, i] + th1 * (C[m - 1, 2, i] + theta * (
+                        C[m - 1, 3, i] + th1 * C[m - 1, 4, i])))
+                ke += 1
+            if not yy <= bound * bound:
+                # the first time in [t, t + h] where ‖y‖ reaches bound, on the step's dense output (bisection);
+                # t + h if ‖y_new‖ is not finite
+                outcome = _DIVERGED
+                if math.isfinite(yy):
+                    lo, hi = 0.0, 1.0
+                    for _ in range(60):
+                        mid = 0.5 * (lo + hi)
+                        th1 = 1.0 - mid
+                        vv = 0.0
+                        for i in range(n):
+                            v = C[m - 1, 0, i] + mid * (C[m - 1, 1, i] + th1 * (C[m - 1, 2, i] + mid * (
+                                C[m - 1, 3, i] + th1 * C[m - 1, 4, i])))
+                            vv += v * v
+                        if vv > bound * bound:
+                            hi = mid
+                        else:
+                            lo = mid
+                    t += hi * h
+                else:
+                    t += h
+                break
+            for i in range(n):
+                y[i] = yn[i]
+                K[0, i] = K[6, i]
+            slot = n_steps % _WINDOW
+            recent_sum += h - recent[slot]
+            recent[slot] = h
+            t = t_new
+            if landing:
+                it += 1
+                if it == n_targets:
+                    outcome = _SUCCESS
+                    break
+                h_new = max(h_new, h_prop)       # after a landing step the step size proposed before it is kept
+            if n_steps >= _WINDOW and recent_sum / _WINDOW < floor:
+                outcome = _DIVERGED if math.sqrt(yy) > _GROWTH * scale else _COLLAPSE
+                break
+            if n_steps >= max_steps:
+                outcome = _BUDGET
+                break
+            h = h_new
+        code[pt], t_fail[pt] = outcome, t
+        stats[pt, 0], stats[pt, 1], stats[pt, 2] = n_steps, nfev, n_rej
