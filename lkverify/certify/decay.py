@@ -456,6 +456,19 @@ class _FastEstimator:
         self.violations: list[dict] = []  # points where the refinement found W ≥ 0
         self.p = float(model.p)
 
+    def _faces(self, n: int) -> list:
+        """Per coordinate i, its values on the n outer faces of the unit box sampled on :attr:`grid` (1 on
+        face i, the grid elsewhere), concatenated face after face."""
+        if getattr(self, "_unit_faces", None) is None or len(self._unit_faces) != n:
+            faces = []
+            for k in range(n):
+                mesh = np.meshgrid(*[self.grid] * (n - 1), indexing="ij")
+                shape = mesh[0].shape if mesh else (1,)  # one variable: the face is the single point x = h
+                it = iter(mesh)
+                faces.append([(np.ones(shape) if i == k else next(it)).ravel() for i in range(n)])
+            self._unit_faces = [np.concatenate([f[i] for f in faces]) for i in range(n)]
+        return self._unit_faces
+
     def _refine(self, fn, his, k, start, values):
         """Local minimisation of fn over the face x_k = h_k from a start point (bounded)."""
         import warnings
@@ -494,17 +507,10 @@ class _FastEstimator:
         his = [float(h(*values)) for h in self.h]
         if min(his) <= 0:
             return None
-        faces = []
         n = len(vs)
-        for k in range(n):
-            axes = [self.grid * his[i] for i in range(n) if i != k]
-            mesh = np.meshgrid(*axes, indexing="ij")
-            shape = mesh[0].shape if mesh else (1,)  # one variable: the face is the single point x = h
-            pts, it = [], iter(mesh)
-            for i in range(n):
-                pts.append(np.full(shape, his[k]) if i == k else next(it))
-            faces.append([x.ravel() for x in pts])
-        X = [np.concatenate([f[i] for f in faces]) for i in range(n)]
+        # the face points x_k = h_k, the other coordinates grid·h_i: the unit grid's face pattern (built once)
+        # times h (the same products as scaling the axes first, so the same floats)
+        X = [u * his[i] for i, u in enumerate(self._faces(n))]
         if self.extra:  # counterexample points of earlier attempts, kept inside the region box
             X = [np.concatenate([X[i], np.clip([pt[str(vs[i])] for pt in self.extra], 0, his[i])]) for i in range(n)]
         L, U, W, Q = (np.broadcast_to(self.f[k](*X, *values), X[0].shape) for k in ("L", "U", "W", "Q"))

@@ -29,7 +29,7 @@ __all__: list = []  # internal: lkverify.certify.steps.witnesses (the search) re
 class _Model:
     """The claim on the piecewise-constant histories with a given grid: exact and numeric forms."""
 
-    def __init__(self, problem: _Problem, m: int):
+    def __init__(self, problem: _Problem, m: int, cse: bool = True):
         self.problem = problem
         self.m = m
         self.offsets = problem.offsets(m)
@@ -103,11 +103,13 @@ class _Model:
         outs = [self.A] + [b for _, b in self.B_active]
         zsyms = [z for slot in self.slots for z in slot.z]
         self.zsyms = zsyms
-        self._f = sympy.lambdify(zsyms, outs, modules="numpy", cse=True)
+        # cse: common subexpressions found once make every evaluation cheaper but the build dearer (a cheap
+        # search with few evaluations, the cross-examination, builds without)
+        self._f = sympy.lambdify(zsyms, outs, modules="numpy", cse=cse)
         # the sides' sizes Σ|term| + |rhs|, the absolute values taken numerically (SymPy's Abs of a large
         # expression costs seconds deciding its sign)
         parts = sympy.lambdify(zsyms, [e.xreplace(zero) for _, e in self.terms_z] + [self.rhs_z.xreplace(zero)],
-                               modules="numpy", cse=True)
+                               modules="numpy", cse=cse)
         self._size = lambda *z: sum(np.abs(np.asarray(v, dtype=float)) for v in parts(*z))
         self.scale = 1.0        # typical size of the objective (set by :meth:`calibrate`)
         self.tol = 1e-12        # improvements below this (in units of scale) are rounding noise

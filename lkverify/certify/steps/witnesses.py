@@ -594,11 +594,12 @@ def _validated(pieces, starts, seed, maxiter) -> tuple:
 @_single_threaded
 def find_witness(lhs, rhs, *, system, values, measures, region=None, exists=(), nonnegative=(), pieces=PIECES,
                  starts=STARTS, budget=None, seed=0, time=None, maxiter=MAXITER, structured=True,
-                 seeds=SEEDS) -> SearchOutcome:
+                 seeds=SEEDS, cse=True) -> SearchOutcome:
     """:func:`search_witness`, telling also whether the search ran to its end (:class:`SearchOutcome`).
 
     ``seeds`` caps the structured starts per grid (default :data:`SEEDS`; None: all); with ``structured`` the end
-    grids :data:`~.witness_seeds.END_GRIDS` are added unless ``pieces`` names an end grid.
+    grids :data:`~.witness_seeds.END_GRIDS` are added unless ``pieces`` names an end grid.  ``cse``: the models'
+    numeric forms with common subexpressions eliminated (cheaper evaluations, a dearer build).
 
     Examples
     --------
@@ -624,7 +625,7 @@ def find_witness(lhs, rhs, *, system, values, measures, region=None, exists=(), 
     for m in grids:
         if deadline.expired:
             return SearchOutcome(None, False, runs, tuple(done))
-        model = _Model(problem, m)
+        model = _Model(problem, m, cse=cse)
         model.calibrate(rng)
         p0s = []
         if structured:
