@@ -42,40 +42,36 @@ __all__ = ["level_constants", "additional_hypotheses", "corrected_results", "sqr
 _DIGITS = 10 ** 6
 
 
+def _sqrt_rational(q, up: bool) -> sympy.Rational:
+    """√q itself when it is rational, else the 6-decimal rational just above (``up``) or below it."""
+    q = sympy.Rational(q)
+    if q < 0:
+        raise ValueError(f"sqrt_{'up' if up else 'down'}: expected q ≥ 0, got {q}")
+    n, d = q.p, q.q
+    root = sympy.Rational(math.isqrt(n * d), d)
+    if root ** 2 == q:
+        return root
+    r = sympy.Rational(math.isqrt(n * _DIGITS ** 2 // d) + (1 if up else 0), _DIGITS)
+    assert (r ** 2 >= q) if up else (r ** 2 <= q)
+    return r
+
+
 def sqrt_up(q) -> sympy.Rational:
-    """A rational r ≥ √q (q ≥ 0 rational), within 10⁻⁶ relative.
+    """A rational r ≥ √q (q ≥ 0 rational), within 10⁻⁶.
 
     >>> sqrt_up(2), sqrt_up(2) ** 2 >= 2, sqrt_up(sympy.Rational(9, 4))
     (707107/500000, True, 3/2)
     """
-    q = sympy.Rational(q)
-    if q < 0:
-        raise ValueError(f"sqrt_up: expected q ≥ 0, got {q}")
-    n, d = q.p, q.q
-    root = sympy.Rational(math.isqrt(n * d), d)
-    if root ** 2 == q:
-        return root
-    r = sympy.Rational(math.isqrt(n * _DIGITS ** 2 // d) + 1, _DIGITS)
-    assert r ** 2 >= q
-    return r
+    return _sqrt_rational(q, up=True)
 
 
 def sqrt_down(q) -> sympy.Rational:
-    """A rational 0 ≤ r ≤ √q (q ≥ 0 rational), within 10⁻⁶ relative.
+    """A rational 0 ≤ r ≤ √q (q ≥ 0 rational), within 10⁻⁶.
 
     >>> sqrt_down(2), sqrt_down(2) ** 2 <= 2
     (1414213/1000000, True)
     """
-    q = sympy.Rational(q)
-    if q < 0:
-        raise ValueError(f"sqrt_down: expected q ≥ 0, got {q}")
-    n, d = q.p, q.q
-    root = sympy.Rational(math.isqrt(n * d), d)
-    if root ** 2 == q:
-        return root
-    r = sympy.Rational(math.isqrt(n * _DIGITS ** 2 // d), _DIGITS)
-    assert r ** 2 <= q
-    return r
+    return _sqrt_rational(q, up=False)
 
 
 def level_constants(values) -> dict:
