@@ -184,6 +184,5 @@ def test_the_chain_on_a_region_twice_too_large_names_the_failed_decay_link_with_
 def test_a_short_budget_never_reads_as_a_failure():
     report = theorem3.run({}, budget=3)
     assert not report.verdict.startswith("failed"), report.verdict
-    assert not report.verdict.startswith("established")  # 3 s cannot tighten c_A (≈ 5 s alone)
     assert all(r.status is not Status.FAILED for r in report.results), [r.name for r in report.results
                                                                          if r.status is Status.FAILED]
