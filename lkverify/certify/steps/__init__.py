@@ -20,7 +20,10 @@
 * :mod:`.signals`, :mod:`.limits` — conclusions by signal arguments: a nonincreasing V bounds the signals
   (:class:`Dissipation`, :class:`LevelSet`, :class:`Conserved`, :class:`BoundedStates`), square
   integrability (:class:`SquareIntegrable`), Barbalat's lemma (:class:`Barbalat`), limits
-  (:class:`LinearLimit`, :class:`FiniteLimit`), the comparison lemma (:class:`Comparison`).
+  (:class:`LinearLimit`, :class:`FiniteLimit`), the comparison lemma (:class:`Comparison`), LaSalle
+  (:class:`LaSalle`), Chetaev's instability (:class:`Chetaev`).
+* :mod:`.forgetting` — :class:`Forgetting`: least squares with bounded-gain forgetting keeps its gain
+  positive definite and bounded (Ẋ = κ(FFᵀ − λX), λ = λ0(1 − N(X⁻¹)/k0) ⇒ X ⪰ I/k0, 0 ≤ λ ≤ λ0).
 * :mod:`.auto` — :class:`Auto`: a term bound whose rule lkverify finds (candidates tried in a
   documented order, the report naming the one that proved it).
 * :mod:`.chain` — :class:`TermwiseBound`: ``lhs ≤ rhs`` with lhs a sum of labelled terms
