@@ -455,6 +455,19 @@ def _gain_bounded(facts):
     return facts.bounded.get("(Γ⁻¹)⁻¹", (Status.UNDECIDED,))[0]
 
 
+def _with_gain(link):
+    """``link`` (Chetaev's) also resting on (a) of (3.4), decided earlier in the chain: (3.10′) needs λ ≥ 0."""
+    from lkverify.certify.steps import Decided
+
+    def compute(facts):
+        res = link.decide(facts)
+        gain = _gain_bounded(facts)
+        status = Status.weakest([res.status, gain])
+        return Result(res.kind, link.name, status, res.value, f"{res.detail}; λ ≥ 0 by (a) ({gain})")
+
+    return Decided(link.name, compute)
+
+
 def _rates_bounded(values):
     """v̇ and ė along the loop: polynomials in ω, sᵢ, θ_r and the references (no Γ, φ, ε, λ)?"""
     from .equations import omega, s1, s2, s3, theta_r, v, e
@@ -545,7 +558,7 @@ def argument(values):
                       "; ".join(f"∫{n}: {b.detail}" for n, b in pe.items()))
 
     gam, coeffs, gmax = gamma_coefficients(values, eta=lc / 4)
-    gam_ok = Status.EXACT if all(c >= 0 for c in gamma_coefficients(values, gmax, eta=lc / 4)[1].values()) \
+    gam_ok = Status.EXACT if gmax > 0 and all(c >= 0 for c in gamma_coefficients(values, gmax, eta=lc / 4)[1].values()) \
         else Status.FAILED
     beta1 = pe["φφᵀ"].beta1 if pe["φφᵀ"].status.is_proof else None
     b_status, b_detail = property_b(values, beta1)
@@ -593,10 +606,11 @@ def argument(values):
                  (("(b)", ch.prior(prop_b)), ("(a)", _gain_bounded), (l2, ch.prior(l2)), (goal, ch.prior(goal))),
                  "λ ≥ λ1 > 0 and Γ⁻¹ ⪰ I/k0 make θ_e ∈ L2 by (3.10′); θ̇_e bounded (Γ ≤ k0, φ, ε bounded) gives "
                  "θ_e → 0; η ∈ L2 ∩ L∞ with η̇ bounded gives η → 0, so ε = Mv − φᵀθ_e − η → 0"),
-        chetaev_link(values, Status.weakest([step, add.status, iso.status,
-                                             chet.get("(3.11) with K_p and ‖η‖²: V̇_c = 2V̇", Status.UNDECIDED)]),
-                     rate=f"V̇_c = 2V̇ ≤ 2(3.10′) < 0 where V_c < 0 near s*: ‖ω − ω_d‖ < W − w̄ there, and e ≠ 0 "
-                          f"(V_c < 0 needs s ≠ s*, and {iso.name}: {iso.detail})"),
+        _with_gain(chetaev_link(values, Status.weakest([step, add.status, iso.status,
+                                                        chet.get("(3.11) with K_p and ‖η‖²: V̇_c = 2V̇",
+                                                                 Status.UNDECIDED)]),
+                                rate=f"V̇_c = 2V̇ ≤ 2(3.10′) < 0 where V_c < 0 near s*: ‖ω − ω_d‖ < W − w̄ there, and "
+                                     f"e ≠ 0 (V_c < 0 needs s ≠ s*, and {iso.name}: {iso.detail})")),
     ]
     return links, {f"wd{i}": values[f"wd{i}"] for i in (1, 2, 3)}
 
