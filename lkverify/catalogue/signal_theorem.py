@@ -34,7 +34,10 @@ class SignalTheorem(Theorem):
         The identities of the proof (links "intermediate identities").
     argument : callable ``values → (links, references)``
         The links (objects with ``decide(facts) → Result``) at these values and the reference
-        signals (coefficient name → function of t) the boundedness links may use.
+        signals (coefficient name → function of t) the boundedness links may use.  A link whose
+        Result has kind ``hypothesis`` is an *additional* hypothesis (derived where the paper's step
+        is false, e.g. a bound on α the corrected step needs): the verdict of an established theorem
+        says "under the additional hypotheses …" and names them.
     findings : sequence of callables ``values → list of Result``
         The paper's printed formulas compared with the derivation: reported, not links.
     conclusion : str
