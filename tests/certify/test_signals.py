@@ -232,3 +232,28 @@ def test_chetaev_each_condition_alone():
     assert Chetaev(a**2 - b**2, {a: 0, b: 0}, {b: e}, e, bad_rate).decide().status is Status.FAILED
     # V = −ε²/(1 − 2ε) along the curve: negative only for ε < 1/2, the denominator vanishes inside (0, 1)
     assert Chetaev(-b**2 / (1 - 2 * b), {a: 0, b: 0}, {b: e}, e, ok).decide().status is not Status.EXACT
+
+
+def test_a_signal_theorem_names_its_additional_hypotheses_only_when_established():
+    from lkverify import Result, SignalTheorem
+    from lkverify.certify.steps import Decided
+
+    def argument(status):
+        def build(values):
+            extra = Decided("extra", lambda facts: Result("hypothesis", "k > 1 (derived)", status, None, "k = 2"))
+            V = (x ** 2 + y ** 2) / 2
+            return [extra, Dissipation(V, q, sympy.eye(1)),
+                    LevelSet(V, (("x", q), ("y", sympy.Matrix([y]))), sympy.eye(2)), BoundedStates(),
+                    SquareIntegrable("x", q, sympy.eye(1), storage=V), Barbalat("x")], {"z": sympy.cos(t)}
+        return build
+
+    ok = lambda v: [Result("hypothesis", "none", Status.EXACT, None, "")]   # noqa: E731
+    rep = SignalTheorem("demo", system=loop(), hypotheses=[ok], argument=argument(Status.EXACT)).run()
+    assert rep.verdict.startswith("established") and "under the additional hypotheses" in rep.verdict
+    assert "extra (k = 2)" in rep.verdict
+    rep = SignalTheorem("demo", system=loop(), hypotheses=[ok], argument=argument(Status.FAILED)).run()
+    assert rep.verdict.startswith("not established: extra refuted") and "under the additional" not in rep.verdict
+    # an ordinary link (kind "bound") is not an additional hypothesis
+    plain = SignalTheorem("demo", system=loop(), hypotheses=[ok],
+                          argument=lambda v: ([Dissipation(x ** 2 / 2, q, sympy.eye(1))], {})).run()
+    assert "under the additional" not in plain.verdict
