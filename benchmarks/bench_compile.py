@@ -39,6 +39,8 @@ import subprocess
 import sys
 import tempfile
 
+from _tree import load_average, tree_env
+
 # the child: one fresh interpreter, timings as JSON on the last line of stdout
 CHILD = r'''
 import json, sys, time
@@ -111,10 +113,7 @@ def main() -> None:
     ap.add_argument("--runs", type=int, default=5, help="timed runs of the warm batch, best shown (default 5)")
     ap.add_argument("--tree", default=None, metavar="DIR", help="time the lkverify package of this checkout")
     args = ap.parse_args()
-    env = dict(os.environ)
-    if args.tree:
-        env["PYTHONPATH"] = os.pathsep.join([os.path.abspath(args.tree), *filter(None, [env.get("PYTHONPATH")])])
-    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+    env, load = tree_env(args.tree), load_average()
     import numba
 
     print(f"machine: {platform.processor() or platform.machine()}, {os.cpu_count()} cores, load {load:.2f}, "

@@ -20,6 +20,8 @@ import subprocess
 import sys
 import time
 
+from _tree import load_average, tree_env
+
 #: label, arguments of ``python``, expected exit code, target in seconds (None: no target)
 COMMANDS = (
     ("python -c pass (the interpreter alone)", ["-c", "pass"], 0, None),
@@ -46,10 +48,7 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=5, help="runs of each command (default 5); the median is shown")
     ap.add_argument("--tree", default=None, metavar="DIR", help="time the lkverify package of this checkout")
     args = ap.parse_args()
-    env = dict(os.environ)
-    if args.tree:
-        env["PYTHONPATH"] = os.pathsep.join([os.path.abspath(args.tree), *filter(None, [env.get("PYTHONPATH")])])
-    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+    env, load = tree_env(args.tree), load_average()
     print(f"machine: {platform.processor() or platform.machine()}, {os.cpu_count()} cores, load {load:.2f}, "
           f"Python {platform.python_version()}; {args.repeat} runs each"
           + (f"; tree {args.tree}" if args.tree else ""))

@@ -30,7 +30,7 @@ import math
 
 import sympy
 
-from lkverify import Result, Status, cross, dot, t
+from lkverify import Result, Status, cross, dot
 from lkverify.certify.matrices import matrix_positive_definite
 from lkverify.certify.steps.signals import sup_bound
 from lkverify.symbolic.polynomial import compare_polynomials as compare
