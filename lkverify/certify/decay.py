@@ -446,7 +446,7 @@ class _FastEstimator:
         vs = model.variables
         args = list(vs) + self.syms
         quad = _quadratic_part(model.lower, vs)
-        self.f = {k: sympy.lambdify(args, e, "numpy") for k, e in
+        self.f = {k: sympy.lambdify(args, e, "numpy", docstring_limit=0) for k, e in
                   (("L", model.lower), ("U", model.upper), ("W", model.vdot), ("Q", quad))}
         self.h = [sympy.lambdify(self.syms, model.region[v], "numpy") for v in vs]
         self.kappa = {hv: sympy.lambdify(self.syms, k, "numpy") for hv, k in model.history_variables.items()}

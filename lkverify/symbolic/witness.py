@@ -280,7 +280,7 @@ def _compile(exprs, bound: tuple, histories: dict):
     leftovers = set().union(*[b.free_symbols for b in bodies]) - set(bound) - set(holders) - set(app_holders)
     if leftovers:
         raise UnsupportedInput(f"cannot evaluate numerically: unassigned symbols {sorted(map(str, leftovers))}")
-    f = sympy.lambdify(list(bound) + holders + app_holders, bodies, modules="math", cse=True)
+    f = sympy.lambdify(list(bound) + holders + app_holders, bodies, modules="math", cse=True, docstring_limit=0)
     arg_fns = [(histories[a.func], sympy.lambdify(list(bound), a.args[0], modules="math")) for a in apps]
     quads = []
     for I in ints:

@@ -177,7 +177,7 @@ class _Chart:
         """The values (one array per component) at the parameter columns ``P`` (shape (nparams, N))."""
         if getattr(self, "_lambdified", None) is None:
             syms = [sympy.Symbol(f"_cp{i}", real=True) for i in range(self.nparams)]
-            self._lambdified = sympy.lambdify(syms, self.expr(syms), modules="numpy", cse=True)
+            self._lambdified = sympy.lambdify(syms, self.expr(syms), modules="numpy", cse=True, docstring_limit=0)
         return self._lambdified(*P)
 
     def exact(self, p: np.ndarray, denominator: int = _DENOMINATOR) -> tuple:

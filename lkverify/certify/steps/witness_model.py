@@ -105,11 +105,11 @@ class _Model:
         self.zsyms = zsyms
         # cse: common subexpressions found once make every evaluation cheaper but the build dearer (a cheap
         # search with few evaluations, the cross-examination, builds without)
-        self._f = sympy.lambdify(zsyms, outs, modules="numpy", cse=cse)
+        self._f = sympy.lambdify(zsyms, outs, modules="numpy", cse=cse, docstring_limit=0)
         # the sides' sizes Σ|term| + |rhs|, the absolute values taken numerically (SymPy's Abs of a large
         # expression costs seconds deciding its sign)
         parts = sympy.lambdify(zsyms, [e.xreplace(zero) for _, e in self.terms_z] + [self.rhs_z.xreplace(zero)],
-                               modules="numpy", cse=cse)
+                               modules="numpy", cse=cse, docstring_limit=0)
         self._size = lambda *z: sum(np.abs(np.asarray(v, dtype=float)) for v in parts(*z))
         self.scale = 1.0        # typical size of the objective (set by :meth:`calibrate`)
         self.tol = 1e-12        # improvements below this (in units of scale) are rounding noise
