@@ -290,7 +290,7 @@ class LinearFamily:
         if fn is None:
             h = sympy.S.Zero if self.delay is None else sympy.sympify(self.delay)
             exprs = [*self.A, *self.Ad, *self.D, h]
-            fn = sympy.lambdify(self.symbols, exprs, modules="numpy", cse=True)
+            fn = sympy.lambdify(self.symbols, exprs, modules="numpy", cse=True, docstring_limit=0)
             self.__dict__["_fn"] = fn
         return fn
 

@@ -241,7 +241,7 @@ def compile_system(system: System, values: Mapping[str, object] | None = None, *
     n = sr.n_states
     lags = tuple(float(c) for c in sr.exact_lags)
     args = [t, *sr.ysyms, *sr.aux_syms, *[z for row in sr.zsyms for z in row], *sr.quad_holders.values()]
-    f = sympy.lambdify(args, sr.exprs, modules="numpy", cse=True)
+    f = sympy.lambdify(args, sr.exprs, modules="numpy", cse=True, docstring_limit=0)
     g_funcs = _aux_integrands(sr.aux, sr.to_symbols, sr.ysyms, n)
     quad_funcs = _quadrature_integrands(sr.quads, sr.to_symbols, sr.ysyms)
     fun = _right_hand_side(f, quad_funcs, n, len(lags))
