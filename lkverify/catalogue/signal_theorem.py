@@ -137,6 +137,7 @@ class SignalTheorem(Theorem):
                     res = res if not how else Result("bound", link.name, Status.UNDECIDED, None,
                                                      _cut_text(cap, how, "link"))
                     results.append(res)
+                    facts.links[res.name] = res.status     # a later link may rest on it (Follows)
                     links.append(Link(res.name, res.status, res.detail))
             findings = rows(self.findings, "the paper's printed formulas")
             results += findings

@@ -419,36 +419,9 @@ def isolated_equilibrium(values) -> Result:
                   f"{', '.join(map(str, ks))})" + ("" if ok else ": not shown isolated"))
 
 
-class _Chain:
-    """The links of :func:`argument`, each recording its status when decided, so a later link rests on the
-    status an earlier one actually got (``prior(name)``)."""
-
-    def __init__(self):
-        self.done = {}
-
-    def prior(self, name):
-        return lambda facts: self.done.get(name, Status.UNDECIDED)
-
-    def decided(self, name, compute):
-        from lkverify.certify.steps import Decided
-
-        def run(facts):
-            res = compute(facts)
-            self.done[name] = res.status
-            return res
-
-        return Decided(name, run)
-
-    def rests(self, name, premises, licence, kind="bound"):
-        """A link that holds as well as the weakest of ``premises`` ((label, Status or callable facts → Status)),
-        evaluated when the chain reaches it."""
-        def compute(facts):
-            pairs = [(n, st(facts) if callable(st) else st) for n, st in premises]
-            status = Status.weakest(st for _, st in pairs)
-            return Result(kind, name, status, None,
-                          f"{licence}; rests on " + ", ".join(f"{n} ({st})" for n, st in pairs))
-
-        return self.decided(name, compute)
+def _prior(name):
+    """The status the earlier link ``name`` of the chain was decided with (a premise of :class:`Follows`)."""
+    return lambda facts: facts.link_status(name)
 
 
 def _gain_bounded(facts):
@@ -535,7 +508,7 @@ def property_b(values, beta1):
 def argument(values):
     """The links after the derived pieces of V̇, on the corrected step (3.10′) of :mod:`.corrected`: (3.4) (a),
     the level set, L2, Barbalat ((2.3)), (3.5), (b), (3.12′) on D, θ_r → θ, Chetaev (3.11)."""
-    from lkverify.certify.steps import Forgetting
+    from lkverify.certify.steps import Decided, Follows, Forgetting
 
     from .corrected import additional_hypotheses
     from .equations import G_matrix, k0, lam0, phi_matrix
@@ -562,7 +535,6 @@ def argument(values):
         else Status.FAILED
     beta1 = pe["φφᵀ"].beta1 if pe["φφᵀ"].status.is_proof else None
     b_status, b_detail = property_b(values, beta1)
-    ch = _Chain()
     s310 = "(3.10′) wherever ‖ω‖ ≤ W: V̇ ≤ −λ_cvᵀMv − (λ_c/4)‖η‖² − (λ_c/4)λ‖θ_e‖²_Γ⁻¹ − K_pΛeᵀe"
     level = f"‖ω‖ ≤ W on {{V ≤ V0}}, V0 = {V0}"
     inv, l2, rates = "{V < V0} positively invariant, V nonincreasing on it", "v, e ∈ L2", "v̇, ė bounded on {V < V0}"
@@ -571,39 +543,39 @@ def argument(values):
     loop_pe, prop_b = "(3.5) along the loop's φ for t ≥ T", "(b) of (3.4): λ(t) ≥ λ1 for t ≥ T + δ"
     added = "additional hypothesis (derived)"
     links = [
-        ch.decided(added, lambda facts: add),
+        Decided(added, lambda facts: add),
         Forgetting("Γ⁻¹", G_matrix(), phi_matrix(), lam_c / 2, lam, lam0, k0, inverse="Γ"),
-        ch.decided(s310, lambda facts: Result("bound", s310, step, {"W": str(W)},
+        Decided(s310, lambda facts: Result("bound", s310, step, {"W": str(W)},
                                               f"W = {W}: {cor['identity'].detail}; {cor['A'].detail}; "
                                               f"{cor['lagrange'].detail}")),
-        ch.rests(level, ((added, ch.prior(added)), ("Γ⁻¹ ≻ 0 (a)", _gain_bounded),
+        Follows(level, ((added, _prior(added)), ("Γ⁻¹ ≻ 0 (a)", _gain_bounded),
                          (cor["level"].name, cor["level"].status)),
                  f"V ≥ ½σ_m‖v‖², V ≥ ½K_pV_δ (Γ⁻¹ ≻ 0): ‖ω‖ ≤ w̄ + κ_V·V0^{{1/2}} ≤ W"
                  f" (w̄ = {k.get('w_bar')}, κ_V = {k.get('kappa_V')})"),
-        ch.rests(inv, (("(3.10′)", ch.prior(s310)), (level, ch.prior(level)), ("λ ≥ 0 (a)", _gain_bounded)),
+        Follows(inv, (("(3.10′)", _prior(s310)), (level, _prior(level)), ("λ ≥ 0 (a)", _gain_bounded)),
                  "V̇ ≤ (3.10′) ≤ 0 on {V ≤ V0}: at a first time with V = V0, V(t) ≤ V(0) < V0 — so for the initial "
                  "data with V(0) < V0 (the statement is semi-global)"),
-        ch.rests(l2, (("(3.10′)", ch.prior(s310)), (inv, ch.prior(inv))),
+        Follows(l2, (("(3.10′)", _prior(s310)), (inv, _prior(inv))),
                  "∫_0^∞(λ_cσ_m‖v‖² + K_pΛ‖e‖²) ≤ V(0) by (3.10′) on the invariant level set"),
-        ch.decided(poly_rates, _rates_bounded(values)),
-        ch.rests(rates, ((poly_rates, ch.prior(poly_rates)), (level, ch.prior(level)), ("(a): θ_r bounded", _gain_bounded)),
+        Decided(poly_rates, _rates_bounded(values)),
+        Follows(rates, ((poly_rates, _prior(poly_rates)), (level, _prior(level)), ("(a): θ_r bounded", _gain_bounded)),
                  "v̇, ė are polynomials in ω, sᵢ, θ_r and the references, each bounded on {V < V0}: ‖ω‖ ≤ W, "
                  "‖sᵢ − cᵢ‖² ≤ 2V0/(K_pkᵢ), ‖θ_e‖² ≤ 2k0V0 (Γ⁻¹ ⪰ I/k0)"),
-        ch.rests(goal, ((l2, ch.prior(l2)), (rates, ch.prior(rates))),
+        Follows(goal, ((l2, _prior(l2)), (rates, _prior(rates))),
                  "v, e ∈ L2 with bounded derivatives tend to 0 (Lemma 1), and ω − ω_d = v − Λe"),
-        ch.decided(pe_name, pe_result),
-        ch.rests(loop_pe, ((goal, ch.prior(goal)), (pe_name, ch.prior(pe_name))),
+        Decided(pe_name, pe_result),
+        Follows(loop_pe, ((goal, _prior(goal)), (pe_name, _prior(pe_name))),
                  "with e, ė, v → 0 ((2.3)) Y_c tends uniformly to its value on the programmed motion, the filter "
                  "φ̇ = −λ_cφ + Y_cᵀ is stable, so ∫_t^{t+δ}φφᵀ ⪰ (β1/2)I for t ≥ some T (T not computed)"),
-        ch.rests(prop_b, ((loop_pe, ch.prior(loop_pe)), ("(a)", _gain_bounded), ("k1 < k0, λ1 ≤ λ1*", b_status)),
+        Follows(prop_b, ((loop_pe, _prior(loop_pe)), ("(a)", _gain_bounded), ("k1 < k0, λ1 ≤ λ1*", b_status)),
                  b_detail),
-        ch.rests("(3.12′): V̇ + γ′V ≤ 0 on D (3.6) for t ≥ T + δ",
-                 (("(3.10′)", ch.prior(s310)), (inv, ch.prior(inv)), ("(b)", ch.prior(prop_b)),
+        Follows("(3.12′): V̇ + γ′V ≤ 0 on D (3.6) for t ≥ T + δ",
+                 (("(3.10′)", _prior(s310)), (inv, _prior(inv)), ("(b)", _prior(prop_b)),
                   (f"−(3.10′) − γ′V ≥ 0 on D, γ′ = {gmax}", gam_ok)),
                  f"the coefficients of −(3.10′) − γV on D are ≥ 0 iff γ ≤ γ′ = {gmax} (min{{λ_c/2, λ_cλ1/2, 2}}; "
                  f"printed γ = min{{λ_c, λ_cλ1/2, 2}} = {GAMMA_PRINTED(values)})"),
-        ch.rests("(а), (б): θ_r → θ, ε → 0 (PE)",
-                 (("(b)", ch.prior(prop_b)), ("(a)", _gain_bounded), (l2, ch.prior(l2)), (goal, ch.prior(goal))),
+        Follows("(а), (б): θ_r → θ, ε → 0 (PE)",
+                 (("(b)", _prior(prop_b)), ("(a)", _gain_bounded), (l2, _prior(l2)), (goal, _prior(goal))),
                  "λ ≥ λ1 > 0 and Γ⁻¹ ⪰ I/k0 make θ_e ∈ L2 by (3.10′); θ̇_e bounded (Γ ≤ k0, φ, ε bounded) gives "
                  "θ_e → 0; η ∈ L2 ∩ L∞ with η̇ bounded gives η → 0, so ε = Mv − φᵀθ_e − η → 0"),
         _with_gain(chetaev_link(values, Status.weakest([step, add.status, iso.status,

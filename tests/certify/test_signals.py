@@ -257,3 +257,16 @@ def test_a_signal_theorem_names_its_additional_hypotheses_only_when_established(
     plain = SignalTheorem("demo", system=loop(), hypotheses=[ok],
                           argument=lambda v: ([Dissipation(x ** 2 / 2, q, sympy.eye(1))], {})).run()
     assert "under the additional" not in plain.verdict
+
+
+def test_follows_rests_on_the_status_an_earlier_link_got():
+    from lkverify.certify.steps.signals import decide_all
+    links = [Dissipation(V, q, sympy.eye(1)),
+             Follows("V bounded", (("V̇ ≤ 0", lambda facts: facts.link_status("V̇ = −qᵀSq ≤ 0")),), "V(t) ≤ V(0)")]
+    res = decide_all(links, Facts(loop(), {}, {"z": sympy.cos(t)}))
+    assert [r.status for r in res] == [Status.EXACT, Status.EXACT]
+    wrong = [Dissipation(V, q, 2 * sympy.eye(1)), links[1]]                # the earlier link refuted: so is this one
+    assert decide_all(wrong, Facts(loop(), {}, {"z": sympy.cos(t)}))[1].status is Status.FAILED
+    # a name no earlier link had: undecided
+    alone = Follows("V bounded", (("V̇ ≤ 0", lambda facts: facts.link_status("no such link")),), "V(t) ≤ V(0)")
+    assert alone.decide(Facts(loop(), {}, {})).status is Status.UNDECIDED

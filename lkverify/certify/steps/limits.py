@@ -273,7 +273,8 @@ class Follows:
     """A conclusion licensed by named steps proved before: ``licence`` states the argument, and the link
     holds exactly as well as the weakest of ``rests_on`` ((name, Status) pairs, e.g. |σ| ≤ ‖V‖ with ‖V‖ → 0;
     a pair (name, None) takes the status an earlier link gave the convergence of ``name``, e.g. ("V", None)
-    after a :class:`Comparison`).
+    after a :class:`Comparison`; a pair (name, callable) the status ``callable(facts)`` gives when this link is
+    decided, e.g. ``lambda facts: facts.link_status("v ∈ L2")``, the status an earlier link of the chain got).
 
     >>> Follows("σ → 0", (("|σ| ≤ ‖V‖", Status.EXACT), ("‖V‖ → 0", Status.FAILED)), "squeezed").decide().status.value
     'failed'
@@ -286,8 +287,14 @@ class Follows:
     def decide(self, facts: Facts | None = None) -> Result:
         if not self.rests_on:
             return _result(self.name, Status.UNDECIDED, "rests on no proved step")
-        pairs = [(n, st if st is not None else (facts.converges.get(n, (Status.UNDECIDED,))[0] if facts is not None
-                                                else Status.UNDECIDED)) for n, st in self.rests_on]
+        def status_of(n, st):
+            if callable(st):
+                return st(facts) if facts is not None else Status.UNDECIDED
+            if st is not None:
+                return st
+            return facts.converges.get(n, (Status.UNDECIDED,))[0] if facts is not None else Status.UNDECIDED
+
+        pairs = [(n, status_of(n, st)) for n, st in self.rests_on]
         status = _weakest(st for _, st in pairs)
         used = ", ".join(f"{n} ({st})" for n, st in pairs)
         return _result(self.name, status, f"{self.licence}; rests on {used}")

@@ -191,6 +191,7 @@ class Facts:
         self.nonincreasing: dict = {}  # V (plain) → status
         self.states_bounded: Status | None = None
         self.dissipation = None        # (status, q, S, S ⪰ 0 check) of the last Dissipation: V̇ = −qᵀSq
+        self.links: dict = {}          # link name → the status it was decided with (by decide_all, SignalTheorem)
 
     # -- reference signals -------------------------------------------------------------------------------------
     def reference_bounded(self, symbol) -> tuple:
@@ -238,6 +239,10 @@ class Facts:
             return status, f"{what} is a polynomial in the bounded states" + (
                 f" and the bounded references {', '.join(map(str, others))}" if others else "")
         return status, f"{what}: " + "; ".join(whys or ["the states are not bounded"])
+
+    def link_status(self, name: str) -> Status:
+        """The status an earlier link of the chain named ``name`` was decided with (``undecided`` if none was)."""
+        return self.links.get(name, Status.UNDECIDED)
 
     def rate(self, expr):
         """d/dt of ``expr`` (in the states at t) along the system, in plain symbols."""
@@ -573,4 +578,9 @@ def decide_all(links: Sequence, facts: Facts) -> list:
     """Every link in order (each may use what the earlier ones established)."""
     if not links:
         raise InputError("a signal argument needs at least one link")
-    return [link.decide(facts) for link in links]
+    out = []
+    for link in links:
+        res = link.decide(facts)
+        facts.links[res.name] = res.status
+        out.append(res)
+    return out
