@@ -37,7 +37,7 @@ from lkverify.symbolic.polynomial import compare_polynomials as compare
 
 from .equations import lam
 
-__all__ = ["level_constants", "additional_hypotheses", "corrected_results", "sqrt_up", "sqrt_down"]
+__all__ = ["level_constants", "additional_hypotheses", "corrected_results", "sqrt_up", "sqrt_down", "young_form_psd"]
 
 _DIGITS = 10 ** 6
 
@@ -119,6 +119,16 @@ def additional_hypotheses(values) -> list:
     return [Result("hypothesis", name, k["status"], {"V0": str(k.get("V0")), "W": str(k.get("W"))}, detail)]
 
 
+def young_form_psd(a, alpha, name):
+    """``alpha``‖v‖² − λ_cvᵀMz + (λ_c/4)‖z‖² + (λ_c/2)‖w‖² ⪰ 0 in (v, w = Mv − ε, z = φᵀθ_e), decided exactly
+    (its 9 × 9 matrix; by the Schur complement ⇔ alpha ≥ λ_cσ_M²): the quadratic slack of (3.10) and of (3.10′)."""
+    lc = a.q["lam_c"]
+    vs, ws, zs = (sympy.Matrix(sympy.symbols(f"{n}1:4", real=True)) for n in ("qv", "qw", "qz"))
+    form = alpha * dot(vs, vs) - lc * dot(vs, a.M * zs) + lc / 4 * dot(zs, zs) + lc / 2 * dot(ws, ws)
+    H = sympy.hessian(form, list(vs) + list(ws) + list(zs)) / 2
+    return matrix_positive_definite(H, name=name, semidefinite=True)
+
+
 def corrected_results(a, derived, values, *, W=None) -> dict:
     """The exact pieces of (3.10′) at these values: ``identity`` (V̇ = R′ − A − B − C), ``A`` (A ⪰ 0),
     ``lagrange`` (Lagrange's identity and σ_M²I − M² ⪰ 0), ``level`` (the split of V and sᵢ × cᵢ).
@@ -139,10 +149,7 @@ def corrected_results(a, derived, values, *, W=None) -> dict:
     out = {"identity": compare("(3.10′): V̇ = R′ − A − B − C along the loop", R1 + [("−A", -A), ("−B", -B), ("−C", -C)],
                                [("V̇ derived (T1 + T2 + T3 + T4)", derived["T1"] + derived["T23"] + derived["T4"])],
                                reference="(3.10′) with the remainders A, B, C", R=a.R)}
-    vs, ws, zs = (sympy.Matrix(sympy.symbols(f"{n}1:4", real=True)) for n in ("qv", "qw", "qz"))
-    form = (al - c) * dot(vs, vs) - lc * dot(vs, a.M * zs) + lc / 4 * dot(zs, zs) + lc / 2 * dot(ws, ws)
-    H = sympy.hessian(form, list(vs) + list(ws) + list(zs)) / 2
-    res = matrix_positive_definite(H, name="A", semidefinite=True)
+    res = young_form_psd(a, al - c, "A")
     out["A"] = Result("bound", "A ⪰ 0 (α − c ≥ λ_cσ_M²)", res.status, str(c), f"c = σ_M²W²/λ_c = {c}: {res.detail}")
     x, y = (sympy.Matrix(sympy.symbols(f"{n}1:4", real=True)) for n in ("lx", "ly"))
     lag = compare("Lagrange: ‖x × y‖² + (xᵀy)² = ‖x‖²‖y‖²", [("‖x × y‖²", dot(cross(x, y), cross(x, y))),

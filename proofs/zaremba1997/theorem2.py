@@ -35,7 +35,6 @@ import sympy
 from lkverify import Result, Status, cross, dot, t
 from lkverify.catalogue.signal_theorem import SignalTheorem
 from lkverify.memo import Memo
-from lkverify.certify.matrices import matrix_positive_definite
 
 from lkverify.symbolic.polynomial import compare_polynomials as compare, time_derivative, plain, poly_ring, to_ring
 from .equations import (PAPER, Kp, Lam, M, P, alpha, c1, c2, c3, composite_laws, k1, k2, k3, lam, lam1, lam_c,
@@ -242,10 +241,9 @@ def bound_310_results(a, derived, printed):
          ("(λ_c/2)‖Mv − ε‖²", lc / 2 * dot(mv_e, mv_e))]
     out = [compare("(3.10) − (3.7)–(3.9) as printed = Q(v, Mv − ε, z = φᵀθ_e)", Q,
                    [("(3.10) − Σ printed pieces", rhs - paper)], reference="the slack of (3.10)", R=R)]
-    vs, ws, zs = (sympy.Matrix(sympy.symbols(f"{n}1:4", real=True)) for n in ("qv", "qw", "qz"))
-    form = al * dot(vs, vs) - lc * dot(vs, a.M * zs) + lc / 4 * dot(zs, zs) + lc / 2 * dot(ws, ws)
-    H = sympy.hessian(form, list(vs) + list(ws) + list(zs)) / 2
-    res = matrix_positive_definite(H, name="Q", semidefinite=True)
+    from .corrected import young_form_psd
+
+    res = young_form_psd(a, al, "Q")
     out.append(Result("bound", "(3.10) from the printed pieces: Q ⪰ 0 (Young's step, μ = 2σ_M)", res.status, None,
                       f"the 9 × 9 matrix of Q in (v, Mv − ε, z): {res.detail}; Schur complement: Q ⪰ 0 ⇔ "
                       f"αI − λ_cM² ⪰ 0 ⇔ α ≥ λ_cσ_M² = {lc * _sigma_M_from(a) ** 2}"))
