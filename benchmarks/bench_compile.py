@@ -1,19 +1,20 @@
-"""Benchmark: the cold compile of the numba DOPRI5 kernel (lkverify.simulate.dopri) and its warm run time.
+"""Benchmark: the cold compile of the numba DOP853 kernel (lkverify.simulate.dop853) and its warm run time.
 
 Run:  python3 benchmarks/bench_compile.py [--repeat N] [--runs R] [--tree DIR]
 
 Cold compile: each of --repeat fresh interpreters (default 3) gets a new empty
 ``NUMBA_CACHE_DIR``, so nothing is loaded from numba's disk cache, and times
 
-* ``import deps`` — numba, NumPy and ``lkverify.simulate`` (what dopri.py imports; not compile);
-* ``import dopri`` — ``import lkverify.simulate.dopri``: the kernel has an explicit signature, so
+* ``import deps`` — numba, NumPy and ``lkverify.simulate`` (what dop853.py imports; not compile);
+* ``import kernel`` — ``import lkverify.simulate.dop853``: the kernel has an explicit signature, so
   this is its compilation (and the write of numba's cache);
-* ``compile_rhs`` — numba compiling the module doctest's one-line right-hand side;
+* ``native rhs`` — the module doctest's one-line right-hand side printed as LLVM IR and compiled
+  (:mod:`lkverify.simulate.native`);
 * ``first call`` — the first ``run_batch`` call on the module doctest's problem (x' = −x(t − 1));
-* ``kernel`` = import dopri + first call: the number the target (≤ 5 s, issue 25) is about.
+* ``kernel`` = import kernel + first call: the number the target (≤ 5 s, issue 25) is about.
 
 The table gives the median and the fastest of the runs.  One more fresh interpreter then imports
-dopri again with the last run's cache directory (a second process on the same machine: the kernel
+the kernel again with the last run's cache directory (a second process on the same machine: the kernel
 loaded from the cache).
 
 Warm run time: in the last cold interpreter, after the timings above, paper 002 Fig. 1
@@ -50,24 +51,26 @@ import numpy as np, numba
 import lkverify.simulate
 T["import deps"] = time.perf_counter() - s
 s = time.perf_counter()
-from lkverify.simulate import dopri
-T["import dopri"] = time.perf_counter() - s
-def rhs(t, y, Z, p, out):
-    out[0] = -p[0] * Z[0, 0]
+from lkverify.simulate import dop853
+T["import kernel"] = time.perf_counter() - s
+import sympy
+from lkverify.simulate.native import load, native_source
 s = time.perf_counter()
-f = dopri.compile_rhs(rhs)
-T["compile_rhs"] = time.perf_counter() - s
+z = sympy.Symbol("Z_0_0")
+fn = load(native_source({"rhs": [-z], "win": []}, {z: ("Z", 0)}))
+T["native rhs"] = time.perf_counter() - s
 out = np.full((1, 2, 1), np.nan); code = np.zeros(1, dtype=np.int64); t_fail = np.zeros(1)
-stats = np.zeros((1, 3), dtype=np.int64)
+stats = np.zeros((1, 4), dtype=np.int64)
 s = time.perf_counter()
-dopri.run_batch(f, np.array([[1.0]]), np.array([[1.0]]), np.array([1.0]), np.array([[1.0]]), np.array([[1.0, 2.0]]),
-                np.array([2]), 0.0, np.array([1.0, 2.0]), 1e-8, 1e-10, 1e8, 1000, 2e-7, np.zeros(1, dtype=np.int64),
-                out, code, t_fail, stats)
+dop853.run_batch(fn["rhs"], fn["win"], np.zeros((1, 1)), np.array([[1.0]]), np.array([1.0]), np.array([[1.0]]),
+                 np.zeros((0, 2), dtype=np.int64), np.array([[1.0, 2.0]]), np.array([2]), 0.0, np.array([1.0, 2.0]),
+                 1e-8, 1e-10, np.inf, 1e8, 1000, 2e-7, np.zeros(1, dtype=np.int64), out, code, t_fail, stats,
+                 np.zeros(1), np.zeros((0, 8, 1)))
 T["first call"] = time.perf_counter() - s
-if dopri.OUTCOMES[code[0]].value != "success" or out[0, :, 0].round(10).tolist() != [0.0, -0.5]:
+if dop853.OUTCOMES[code[0]].value != "success" or out[0, :, 0].round(10).tolist() != [0.0, -0.5]:
     raise SystemExit(f"wrong result: {code}, {out}")
-T["kernel"] = T["import dopri"] + T["first call"]
-T["file"] = dopri.__file__
+T["kernel"] = T["import kernel"] + T["first call"]
+T["file"] = dop853.__file__
 runs = int(sys.argv[1])
 if runs:
     import sympy
@@ -96,7 +99,7 @@ if runs:
 print(json.dumps(T))
 '''
 
-PHASES = ("import deps", "import dopri", "compile_rhs", "first call", "kernel")
+PHASES = ("import deps", "import kernel", "native rhs", "first call", "kernel")
 
 
 def child(env: dict, cache: str, runs: int = 0) -> dict:
@@ -134,7 +137,7 @@ def main() -> None:
         v = [r[phase] for r in rows]
         print(f"{phase:<32} {statistics.median(v):7.2f}s {min(v):7.2f}s"
               + ("   target <= 5 s: " + ("ok" if statistics.median(v) <= 5.0 else "over") if phase == "kernel" else ""))
-    print(f"{'cached: import dopri + 1st call':<32} {cached['kernel']:7.2f}s  (a second process, same cache)")
+    print(f"{'cached: import + 1st call':<32} {cached['kernel']:7.2f}s  (a second process, same cache)")
     last = rows[-1]
     print(f"warm batch (paper 002 Fig. 1, {last['points']} points, t_end = 100, best of {args.runs}): "
           f"{last['warm']:.3f} s = {1e3 * last['warm'] / last['points']:.3f} ms per point, "

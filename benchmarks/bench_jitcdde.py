@@ -6,7 +6,7 @@ Cases (t in [0, t_end], constant initial histories as catalogued):
 
 * ``aleksandrov2023.fig1`` run 0: paper 002, Fig. 1 — a distributed-delay torque.
   lkverify turns each window integral into an auxiliary state
-  ``z' = g(x(t)) - g(x(t - tau))`` and re-synchronises it by quadrature after each step;
+  ``z' = g(x(t)) - g(x(t - tau))`` and re-synchronises it by quadrature after each step (both paths);
   jitcdde integrates the same ``z'`` equation as an ordinary component.
 * ``aleksandrov2026.example`` run 0: paper 000, "delayed feedback (7)" — a discrete
   delay tau = 1 in a 12-dimensional system.
@@ -28,9 +28,15 @@ What is measured
    rung — is <= 1e-6 (max over the grid and the state components, absolute;
    auxiliary components are not compared).
 4. Times (wall clock, in this process):
-   * lkverify ``total`` = ``simulate(...)`` end to end (it calls ``compile_system``:
-     SymPy substitution, CSE and ``lambdify``), best of --repeat; ``integrate`` is
-     ``Trajectory.seconds`` of the same run; ``setup`` is the difference.
+   * lkverify ``total`` = ``simulate(...)`` end to end, best of --repeat: on the compiled
+     integrator (row ``lkverify``; ``prepare_run``'s ``compile_system``, ``compile_family``'s
+     SymPy work and the native code compiled by LLVM anew each time: the per-process cache
+     of compiled families is emptied before every run, so nothing of the case is reused), and
+     on SciPy's steppers (row ``scipy``, ``integrator="scipy"``, today's reference path);
+     ``integrate`` is ``Trajectory.seconds`` of the same run (the kernel calls, resp.
+     ``solve_dde``); ``setup`` is the difference.  The DOP853 kernel itself is compiled once per
+     machine and loaded from numba's disk cache on the first run of a process (its load time
+     is printed, not counted, as jitcdde's first compile with its setuptools import is not).
    * jitcdde ``setup`` = translating the SymPy rhs to symengine and building the
      ``jitcdde`` object; ``compile`` = ``compile_C()`` (symengine simplification for
      n <= 10, C code generation, gcc -O3, import), each time on a fresh ``jitcdde``
@@ -51,7 +57,7 @@ What is measured
    the case's gains as runtime parameters (FAST_GRID; fig1 sweeps b and h through
    F = diag(h,h,h), as ``lkverify sweep`` does), integrated by the numba DOPRI5 of
    :mod:`lkverify.simulate.batch`.  ``setup`` = ``compile_family`` (SymPy: substitution, CSE,
-   source), ``compile`` = numba compilation of the generated rhs in this process (the
+   source), ``compile`` = the generated rhs compiled to native code (LLVM) in this process (the
    integrator kernel itself is compiled once per machine and loaded from numba's disk
    cache; a cold kernel compile is printed when it happens), ``integrate`` =
    ``CompiledFamily.integrate`` of the one point, wall clock, warm, best of --repeat
@@ -96,6 +102,7 @@ import sympy
 
 from lkverify.catalogue.loader import find_items
 from lkverify.simulate import StepControl, compile_system, simulate
+from lkverify.simulate import family as family_module
 from lkverify.simulate.family import compile_family
 
 CASES = [("aleksandrov2023.fig1", 0), ("aleksandrov2026.example", 0)]
@@ -187,11 +194,12 @@ def state_matrix(tr, layout) -> np.ndarray:
 
 # -- lkverify -----------------------------------------------------------------
 
-def run_lkverify(case: Case, grid, rtol, atol):
-    """(states on grid, total s, integration s)."""
+def run_lkverify(case: Case, grid, rtol, atol, integrator="auto"):
+    """(states on grid, total s, integration s); the case's compiled functions are not reused (compiled anew)."""
+    family_module._CACHE.clear()
     start = time.perf_counter()
     tr = simulate(case.run.system, history=case.run.history, t_end=float(grid[-1]), values=case.run.values,
-                  step=StepControl(rtol=rtol, atol=atol), t_eval=grid)
+                  step=StepControl(rtol=rtol, atol=atol), t_eval=grid, integrator=integrator)
     total = time.perf_counter() - start
     if tr.outcome.value != "success" or len(tr.t) != len(grid):
         raise RuntimeError(f"lkverify on {case.name} at rtol={rtol:g}: {tr.outcome.value} {tr.message}")
@@ -414,13 +422,14 @@ def bench_case(case: Case, grid, repeat: int, force_profile: bool) -> tuple:
           f"{max_error(tight, ref):.2e}  ({tight_s:.1f} s)")
 
     fam, point, fast_setup, fast_compile, kernel = build_fast(case)
-    print(f"  fast path: grid {fam.grid} at {point.tolist()}; compile_family {fast_setup:.3f} s, numba rhs "
+    print(f"  fast path: grid {fam.grid} at {point.tolist()}; compile_family {fast_setup:.3f} s, native rhs "
           f"{fast_compile:.3f} s, integrator kernel import {kernel:.3f} s"
           f"{' (cold compile: first run on this machine)' if kernel > 5 else ' (numba disk cache)'}")
     lk_set, lk_err, lk_scan = tune(lambda r, a: run_lkverify(case, grid, r, a)[0], ref, "lkverify")
+    sp_set, sp_err, sp_scan = tune(lambda r, a: run_lkverify(case, grid, r, a, "scipy")[0], ref, "scipy")
     jit_set, jit_err, jit_scan = tune(lambda r, a: run_jitcdde(dde, case, grid, r, a)[0], ref, "jitcdde")
     fast_set, fast_err, fast_scan = tune(lambda r, a: run_fast(fam, point, case, grid, r, a)[0], ref, "fast")
-    for tool, scan in (("lkverify", lk_scan), ("jitcdde", jit_scan), ("fast", fast_scan)):
+    for tool, scan in (("lkverify", lk_scan), ("scipy", sp_scan), ("jitcdde", jit_scan), ("fast", fast_scan)):
         for ratio in ATOL_RATIOS:
             rungs = [f"{r:.0e}:{e:.1e}" for (r, a), e in scan if a == r * ratio]
             print(f"  scan {tool:8s} atol=rtol*{ratio:g}  rtol:error  {'  '.join(rungs)}")
@@ -428,6 +437,8 @@ def bench_case(case: Case, grid, repeat: int, force_profile: bool) -> tuple:
     lk_runs = [run_lkverify(case, grid, *lk_set) for _ in range(repeat)]
     lk_total = min(r[1] for r in lk_runs)
     lk_int = min(r[2] for r in lk_runs)
+    sp_runs = [run_lkverify(case, grid, *sp_set, "scipy") for _ in range(repeat)]
+    sp_total, sp_int = min(r[1] for r in sp_runs), min(r[2] for r in sp_runs)
     jit_int = min(run_jitcdde(dde, case, grid, *jit_set)[1] for _ in range(repeat))
     tr = simulate(case.run.system, history=case.run.history, t_end=float(grid[-1]), values=case.run.values,
                   step=StepControl(rtol=lk_set[0], atol=lk_set[1]), t_eval=grid)
@@ -436,6 +447,7 @@ def bench_case(case: Case, grid, repeat: int, force_profile: bool) -> tuple:
     fres = fast_runs[0][2]
     batch = min(run_fast(fam, point, case, grid, *fast_set, copies=BATCH)[1] for _ in range(repeat))
     attempts = count_jitcdde_steps(dde, case, grid, *jit_set)
+    print(f"  lkverify's integrator: {tr.integrator}")
     print(f"  work at the chosen settings: lkverify {tr.n_steps} steps, {tr.nfev} rhs evaluations "
           f"({1e6 * lk_int / tr.nfev:.1f} µs each, integration time / evaluations); "
           f"jitcdde {attempts} step attempts ({1e6 * jit_int / attempts:.1f} µs each)")
@@ -446,11 +458,12 @@ def bench_case(case: Case, grid, repeat: int, force_profile: bool) -> tuple:
     fast = Timing("fast", *fast_set, fast_err, fast_setup, fast_compile, fast_int,
                   fast_setup + fast_compile + fast_int)
     lk = Timing("lkverify", *lk_set, lk_err, lk_total - lk_int, None, lk_int, lk_total)
+    sp = Timing("scipy", *sp_set, sp_err, sp_total - sp_int, None, sp_int, sp_total)
     jit = Timing("jitcdde", *jit_set, jit_err, setup_j, compile_j, jit_int, setup_j + compile_j + jit_int)
     profile = None
     if force_profile or lk.total > jit.total or lk.integrate > jit.integrate:
         profile = profile_simulate(case, grid, *lk_set)
-    return lk, jit, fast, batch / BATCH, profile
+    return lk, jit, fast, batch / BATCH, profile, sp
 
 
 def main() -> None:
@@ -472,20 +485,23 @@ def main() -> None:
 
     print(f"\n{'case':24s} {'tool':9s} {'rtol':>7s} {'atol':>7s} {'max err':>9s} {'setup s':>8s} "
           f"{'compile s':>9s} {'integr s':>9s} {'total s':>8s}")
-    for name, (lk, jit, fast, _, _) in rows.items():
-        for r in (lk, jit, fast):
+    for name, (lk, jit, fast, _, _, sp) in rows.items():
+        for r in (lk, sp, jit, fast):
             compile_s = f"{r.compile:9.3f}" if r.compile is not None else f"{'-':>9s}"
             print(f"{name:24s} {r.tool:9s} {r.rtol:7.0e} {r.atol:7.0e} {r.error:9.2e} {r.setup:8.3f} "
                   f"{compile_s} {r.integrate:9.4f} {r.total:8.3f}")
-    print("\nratio lkverify / jitcdde (same run; target total <= 1.0):")
-    for name, (lk, jit, _, _, _) in rows.items():
-        print(f"  {name:24s} total {lk.total / jit.total:6.2f}   integration {lk.integrate / jit.integrate:6.2f}")
+    print("\nratio lkverify simulate / jitcdde (same run; targets integration <= 0.1, total <= 0.5):")
+    for name, (lk, jit, _, _, _, sp) in rows.items():
+        ti, tt = lk.integrate / jit.integrate, lk.total / jit.total
+        print(f"  {name:24s} total {tt:6.2f}   integration {ti:6.2f}   "
+              f"({'met' if ti <= 0.1 and tt <= 0.5 else 'not met'}; SciPy path: total {sp.total / jit.total:.2f}, "
+              f"integration {sp.integrate / jit.integrate:.2f})")
     print("\nratio fast path / jitcdde (same run; target integration <= 1.0):")
-    for name, (_, jit, fast, per_point, _) in rows.items():
+    for name, (_, jit, fast, per_point, _, _) in rows.items():
         print(f"  {name:24s} total {fast.total / jit.total:6.2f}   integration {fast.integrate / jit.integrate:6.2f}"
               f"   per point in a batch of {BATCH}: {1e3 * per_point:.3f} ms ({per_point / jit.integrate:.2f} "
               f"of jitcdde's integration)")
-    for name, (lk, _, _, _, profile) in rows.items():
+    for name, (lk, _, _, _, profile, _) in rows.items():
         if profile:
             print(f"\nprofile of lkverify simulate, {name} at rtol={lk.rtol:.0e} atol={lk.atol:.0e}:")
             print(profile)

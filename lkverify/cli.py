@@ -574,7 +574,7 @@ def _simulate(args) -> int:
         for ex, report, written in reports:
             from .report.text import wrap_block
 
-            setup = "\n".join(_setup_lines(ex, args, histories))
+            setup = "\n".join(_setup_lines(ex, args, histories) + _integrator_lines(report))
             lines = [report.as_text(verbose=args.verbose)] + wrap_block(setup, indent="  ", limit=None)
             lines += [f"figure: {w}" for w in written]
             blocks.append("\n".join(lines))
@@ -680,6 +680,19 @@ def _setup_lines(ex, args, histories) -> list:
     if ex.envelope is not None:
         lines.append(f"‖χ‖_τ of the history used: {ex.chi_used():.4g}")
     return lines
+
+
+def _integrator_lines(report) -> list:
+    """Which integrator ran the runs (from the runs' results): one line."""
+    used = {}
+    for r in report.results:
+        if str(r.kind) == "simulation" and isinstance(r.value, dict) and r.value.get("integrator"):
+            used.setdefault(r.value["integrator"], []).append(r.name.removeprefix("run "))
+    if not used:
+        return []
+    if len(used) == 1:
+        return [f"integrator: {next(iter(used))}"]
+    return ["integrator: " + "; ".join(f"{k} ({', '.join(v)})" for k, v in used.items())]
 
 
 def _is_vector(v) -> bool:

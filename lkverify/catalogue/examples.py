@@ -299,7 +299,7 @@ class Example(Item):
         t1, t2 = _time_to(tr.t, d, 1e-2), _time_to(tr.t, d, 1e-3)
         return RunSummary(label, tr.outcome, bool(tr.outcome is Outcome.SUCCESS and d[-1] < 1e-3), t1, t2,
                           float(d[-1]), finals, float(np.max(d)), tr.constraint_drift, tr.n_steps, tr.seconds,
-                          float(tr.t[-1]))
+                          float(tr.t[-1]), tr.integrator)
 
     def check_envelope(self, trajectories: Mapping[str, Trajectory]) -> EnvelopeCheck | None:
         if self.envelope is None:

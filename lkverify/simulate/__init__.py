@@ -1,13 +1,17 @@
 """The simulation stage: a symbolic System integrated numerically, and what the papers say about the runs.
 
-* :mod:`~lkverify.simulate.solver` — the DDE integrator :func:`solve_dde` (method of steps on
-  SciPy's explicit Runge–Kutta steppers), with :mod:`~lkverify.simulate.history` (dense
+* :mod:`~lkverify.simulate.dop853` — the one integrator: SciPy's DOP853 method of steps compiled with
+  numba (once per machine), the right-hand side as native code (:mod:`~lkverify.simulate.native`,
+  llvmlite); :func:`simulate` runs on it (:mod:`~lkverify.simulate.compiled`), the sweeps through
+  :mod:`~lkverify.simulate.batch`;
+* :mod:`~lkverify.simulate.solver` — the same method of steps on SciPy's steppers with a Python
+  right-hand side (:func:`solve_dde`), for what only it handles: quadrature terms (general kernels),
+  histories that are functions of t, RK45; with :mod:`~lkverify.simulate.history` (dense
   output), :mod:`~lkverify.simulate.events` (breakpoints, divergence, the step floor) and
   :mod:`~lkverify.simulate.checks` (argument checks);
 * :mod:`~lkverify.simulate.compile` — :func:`compile_system`: the right-hand side generated from the System;
 * :mod:`~lkverify.simulate.family` — :func:`compile_family`: compiled once with the swept parameters as
-  runtime arguments (generated numba code), integrated many times by :mod:`~lkverify.simulate.batch`
-  (Dormand–Prince 5(4) in :mod:`~lkverify.simulate.dopri`, imported on first use);
+  runtime arguments, integrated many times by :mod:`~lkverify.simulate.batch`;
 * :mod:`~lkverify.simulate.control` — :class:`StepControl`: tolerances and step limits;
 * :mod:`~lkverify.simulate.runs` — :func:`simulate` and the :class:`Trajectory`;
 * :mod:`~lkverify.simulate.experiments` — runs, plotted series and claims about runs;

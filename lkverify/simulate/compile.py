@@ -241,7 +241,7 @@ def compile_system(system: System, values: Mapping[str, object] | None = None, *
     n = sr.n_states
     lags = tuple(float(c) for c in sr.exact_lags)
     args = [t, *sr.ysyms, *sr.aux_syms, *[z for row in sr.zsyms for z in row], *sr.quad_holders.values()]
-    f = sympy.lambdify(args, sr.exprs, modules="numpy", cse=True, docstring_limit=0)
+    f = _Lambdified(args, sr.exprs)      # lambdified on first call: the compiled integrator never calls it
     g_funcs = _aux_integrands(sr.aux, sr.to_symbols, sr.ysyms, n)
     quad_funcs = _quadrature_integrands(sr.quads, sr.to_symbols, sr.ysyms)
     fun = _right_hand_side(f, quad_funcs, n, len(lags))
@@ -537,6 +537,18 @@ def _quadrature_integrands(quads, to_symbols, ysyms) -> list:
         flo = sympy.lambdify([t], lo, modules="numpy")
         out.append((il, flo))
     return out
+
+
+class _Lambdified:
+    """``sympy.lambdify(args, exprs)`` (NumPy, CSE) made on the first call."""
+
+    def __init__(self, args, exprs):
+        self.args, self.exprs, self.f = args, exprs, None
+
+    def __call__(self, *values):
+        if self.f is None:
+            self.f = sympy.lambdify(self.args, self.exprs, modules="numpy", cse=True, docstring_limit=0)
+        return self.f(*values)
 
 
 def _right_hand_side(f, quad_funcs, n_states: int, nl: int) -> Callable:

@@ -20,9 +20,17 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
-__all__ = ["BLOWUP_GROWTH", "FLOOR_WINDOW", "FloorHit", "StepFloor", "breakpoints", "crossing"]
+__all__ = ["BLOWUP_GROWTH", "DISCONTINUITY_ORDER", "FLOOR_WINDOW", "MAX_STEPS", "FloorHit", "StepFloor", "breakpoints", "crossing"]
 
 _EPS = np.finfo(float).eps
+#: The step floor.  Steps are at most ``min(delays)`` long (the method of steps), so a run
+#: needs at least ``(t_end − t0) / min(delays)`` steps: a run needing more than MAX_STEPS is
+#: refused up front (a tiny delay, a huge t_end).  During a run, when the mean of the last
+#: :data:`FLOOR_WINDOW` steps falls below ``(t_end − t0) / MAX_STEPS`` the run
+#: stops: a blow-up (``diverged``) if ‖y‖ has grown, else a step collapse (a stiff system).
+MAX_STEPS = 10**7
+#: breakpoints t0 + Σ kᵢ lagᵢ with Σ kᵢ up to this order are landed on (solve_dde's default)
+DISCONTINUITY_ORDER = 4
 #: number of accepted steps whose mean is compared with ``min_mean_step``
 FLOOR_WINDOW = 200
 #: a step collapse with ‖y‖ grown by this factor over its initial size (at least 1) is reported as a blow-up

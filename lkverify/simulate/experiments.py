@@ -216,6 +216,7 @@ class RunSummary:
     steps: int
     seconds: float
     t_end: float
+    integrator: str = ""
 
     @property
     def status(self) -> Status:

@@ -34,7 +34,7 @@ Examples
 >>> fam.exact_lags, fam.lags([2.0, 0.5]).tolist()
 ((tau,), [0.5])
 >>> res = fam.integrate(np.array([[1.0, 1.0], [2.0, 0.5]]), {"x": [1]}, t_end=1.0, t_eval=[0.5, 1.0])
->>> res.y[:, :, 0].round(10).tolist()     # x = 1 − a t on [0, τ]; a = 2, τ = 1/2: x(1) = −2∫_{1/2}^1 (2 − 2s) ds
+>>> (res.y[:, :, 0].round(10) + 0.0).tolist()     # x = 1 − a t on [0, τ]; a = 2, τ = 1/2: x(1) = −2∫_{1/2}^1 (2 − 2s) ds
 [[0.5, 0.0], [0.0, -0.5]]
 """
 
@@ -84,7 +84,14 @@ class CompiledFamily:
     rhs : tuple of SymPy expressions
         The right-hand side the source was generated from (in ``y_i``, ``Z_k_i``, ``p_j``, ``t``).
     source : str
-        Python source of ``rhs(t, y, Z, p, out)``, ``lags(p)`` and ``aux_start(t0, p, x)``.
+        Python source of ``rhs(t, y, Z, p, out)`` and ``win(t, y, Z, p, g)`` (``Z`` flat, the fallback
+        compiled by numba), ``lags(p)`` and ``aux_start(t0, p, x)``.
+    windows : tuple of (int, int)
+        Every window auxiliary state as (its component in the state vector, the index of its length
+        in :attr:`exact_lags`): the integrator re-synchronises them by quadrature.
+    native : str or None
+        LLVM IR of ``rhs`` and ``win`` (:mod:`lkverify.simulate.native`), ``None`` when an expression
+        has no native form (then numba compiles :attr:`source`).
 
     Examples
     --------
@@ -114,19 +121,27 @@ class CompiledFamily:
     exact_lags: tuple
     rhs: tuple
     source: str
+    windows: tuple = ()
+    native: str | None = None
 
     @property
     def key(self) -> str:
-        """SHA-256 of :attr:`source`: the key of the per-process cache of compiled functions."""
-        return hashlib.sha256(self.source.encode()).hexdigest()
+        """SHA-256 of :attr:`source` and :attr:`native`: the key of the per-process cache of compiled functions."""
+        return hashlib.sha256((self.source + "\n" + (self.native or "")).encode()).hexdigest()
 
     def functions(self):
-        """``(rhs, lags, aux_start)``: the numba-compiled ``rhs`` and the plain Python helpers (cached per process)."""
-        return _compiled(self.source, self.key)
+        """``(rhs, win, lags, aux_start)``: the native (or numba) ``rhs`` and ``win``, and the plain Python
+        helpers (compiled once per process)."""
+        return _compiled(self.source, self.native, self.key)
+
+    @property
+    def backend(self) -> str:
+        """``"native"`` (LLVM IR compiled by llvmlite) or ``"numba"`` (the Python source, when no native form)."""
+        return "native" if self.native is not None else "numba"
 
     def lags(self, p) -> np.ndarray:
         """The lags (floats) at the point ``p`` (one value per grid name)."""
-        return np.array(self.functions()[1](self._point(p)), dtype=float)
+        return np.array(self.functions()[2](self._point(p)), dtype=float)
 
     def initial_state(self, p, history: Mapping[str, object], *, t0: float = 0.0) -> np.ndarray:
         """The full initial vector at the point ``p``: the constant history, then the auxiliary states.
@@ -147,7 +162,7 @@ class CompiledFamily:
 
     def aux_start(self, p, x0, *, t0: float = 0.0) -> np.ndarray:
         """The auxiliary states' initial values at the point ``p`` for the constant history ``x0`` (states)."""
-        aux = np.asarray(self.functions()[2](float(t0), self._point(p), np.asarray(x0, dtype=float)), dtype=float)
+        aux = np.asarray(self.functions()[3](float(t0), self._point(p), np.asarray(x0, dtype=float)), dtype=float)
         if np.isnan(aux).any():
             raise UnsupportedInput(f"{self.name}: a memory integral whose integrand depends on the integration "
                                    f"variable itself starts before t0 = {t0:g}; start at its lower limit, or "
@@ -231,17 +246,20 @@ def compile_family(system: System, values: Mapping[str, object] | None = None, *
     exprs = tuple(e.xreplace(names) for e in sr.exprs)
     lags = tuple(c.xreplace(names) for c in sr.exact_lags)
     starts = _aux_starts(sr, names)
+    windows, integrands = _windows(sr, names, lags)
     allowed = set(names.values()) | {t, _T0} | set(_x0_symbols(sr.n_states))
-    for e in exprs + lags + tuple(starts):
+    for e in exprs + lags + tuple(starts) + tuple(integrands):
         extra = e.free_symbols - allowed
         if extra:
             raise InputError(f"{name}: symbols {sorted(map(str, extra))} left after substituting the values; "
                              f"expected a value for every parameter, or its name in grid")
-    source = _source(exprs, lags, starts, sr.n_states, len(sr.exprs), len(symbols), len(sr.exact_lags), name)
+    source = _source(exprs, integrands, lags, starts, sr.n_states, len(sr.exprs), len(symbols),
+                     len(sr.exact_lags), name)
     aux = tuple((a.kind, str(a.exact_lag) if a.kind == "window" else
                  f"rate {a.lag:g}, weight {a.coeff:g}, from {a.lower:g}") for a in sr.aux)
     return CompiledFamily(name, tuple(grid), tuple(symbols), dict(sr.layout), sr.n_states, len(sr.exprs), aux,
-                          sr.exact_lags, exprs, source)
+                          sr.exact_lags, exprs, source, windows,
+                          _native(exprs, integrands, len(sr.exprs), sr.n_states, len(sr.exact_lags), len(symbols)))
 
 
 # -- code generation ---------------------------------------------------------------
@@ -280,6 +298,35 @@ def _aux_starts(sr, names) -> list:
     return out
 
 
+def _windows(sr, names, lags) -> tuple:
+    """((component, lag index) of every window auxiliary state, their integrands in ``y_i``, ``p_j``)."""
+    windows, integrands = [], []
+    for k, a in enumerate(sr.aux):
+        if a.kind != "window":
+            continue
+        length = a.exact_lag.xreplace(names)
+        index = next((j for j, c in enumerate(lags) if sympy.simplify(c - length) == 0), None)
+        if index is None:   # not expected: the window's ODE reads x(t − c), so c is one of the lags
+            raise UnsupportedInput(f"window {a.integral}: its length {length} is not one of the lags {lags}")
+        windows.append((sr.n_states + k, index))
+        integrands.append(sr.to_symbols(a.g.subs(a.var, t), t).xreplace(names))
+    return tuple(windows), integrands
+
+
+def _native(exprs, integrands, n: int, n_states: int, n_lags: int, n_grid: int) -> str | None:
+    """LLVM IR of ``rhs`` and ``win`` (:func:`lkverify.simulate.native.native_source`), or None."""
+    from .native import NotPrintable, native_source
+
+    arguments = {sympy.Symbol(f"y_{i}", real=True): ("y", i) for i in range(n)}
+    arguments.update({sympy.Symbol(f"Z_{k}_{i}", real=True): ("Z", k * n_states + i)
+                      for k in range(n_lags) for i in range(n_states)})
+    arguments.update({sympy.Symbol(f"p_{j}", real=True): ("p", j) for j in range(n_grid)})
+    try:
+        return native_source({"rhs": exprs, "win": integrands}, arguments, time=t)
+    except NotPrintable:
+        return None
+
+
 class _Printer(PythonCodePrinter):
     """Python (math module) code; floats printed with all their digits."""
 
@@ -287,16 +334,22 @@ class _Printer(PythonCodePrinter):
         return repr(float(expr))
 
 
-def _source(exprs, lags, starts, n_states: int, n: int, n_grid: int, n_lags: int, name: str) -> str:
-    """The module source: ``rhs`` (common subexpressions eliminated), ``lags``, ``aux_start``."""
+def _source(exprs, integrands, lags, starts, n_states: int, n: int, n_grid: int, n_lags: int, name: str) -> str:
+    """The module source: ``rhs`` and ``win`` (common subexpressions eliminated; Z flat), ``lags``, ``aux_start``."""
     printer = _Printer({"fully_qualified_modules": True, "strict": True})
-    repl, reduced = sympy.cse(list(exprs), symbols=sympy.numbered_symbols("w_"), order="none")
     unpack = [f"    y_{i} = y[{i}]" for i in range(n)]
-    unpack += [f"    Z_{k}_{i} = Z[{k}, {i}]" for k in range(n_lags) for i in range(n_states)]
+    unpack += [f"    Z_{k}_{i} = Z[{k * n_states + i}]" for k in range(n_lags) for i in range(n_states)]
     unpack += [f"    p_{j} = p[{j}]" for j in range(n_grid)]
+    unpack_win = [line for line in unpack if not line.startswith("    y_")] + [f"    y_{i} = y[{i}]"
+                                                                            for i in range(n_states)]
+
+    def body(values, out):
+        repl, reduced = sympy.cse(list(values), symbols=sympy.numbered_symbols("w_"), order="none")
+        lines = [f"    {s} = {printer.doprint(e)}" for s, e in repl]
+        return lines + [f"    {out}[{i}] = {printer.doprint(e)}" for i, e in enumerate(reduced)] or ["    pass"]
+
     try:
-        body = [f"    {s} = {printer.doprint(e)}" for s, e in repl]
-        body += [f"    out[{i}] = {printer.doprint(e)}" for i, e in enumerate(reduced)]
+        rhs_body, win_body = body(exprs, "out"), body(integrands, "g")
         lag_text = ", ".join(printer.doprint(c) for c in lags)
         start_text = ", ".join(printer.doprint(e) for e in starts)
     except PrintMethodNotImplementedError as exc:
@@ -307,7 +360,8 @@ def _source(exprs, lags, starts, n_states: int, n: int, n_grid: int, n_lags: int
     states = [f"    x_{i} = x[{i}]" for i in range(n_states)]
     return "\n".join([
         f"# generated by lkverify.simulate.family for {name}", "import math", "",
-        "def rhs(t, y, Z, p, out):", *unpack, *body, "", "",
+        "def rhs(t, y, Z, p, out):", *unpack, *rhs_body, "", "",
+        "def win(t, y, Z, p, g):", *unpack_win, *win_body, "", "",
         "def lags(p):", *params, f"    return ({lag_text}{',' if lags else ''})", "", "",
         "def aux_start(t0, p, x):", *params, *states, f"    return ({start_text}{',' if starts else ''})", ""])
 
@@ -318,18 +372,31 @@ _CACHE = Memo(64)  # key → compiled functions
 _LOCK = threading.Lock()
 
 
-def _compiled(source: str, key: str):
-    """(numba rhs, Python lags, Python aux_start) of ``source``; compiled once per process."""
+def _compiled(source: str, native: str | None, key: str):
+    """(rhs, win, Python lags, Python aux_start): native code of ``native``, else numba of ``source``; once per process."""
     with _LOCK:
         hit = _CACHE.get(key)
         if hit is None:
-            from .dopri import compile_rhs
-
             namespace: dict = {}
             exec(compile(source, f"<lkverify family {key[:12]}>", "exec"), namespace)  # noqa: S102 - generated
-            hit = (compile_rhs(namespace["rhs"]), namespace["lags"], namespace["aux_start"])
+            if native is not None:
+                from .native import load
+
+                funcs = load(native)
+                rhs, win = funcs["rhs"], funcs["win"]
+            else:
+                rhs, win = (_numba_function(namespace[f]) for f in ("rhs", "win"))
+            hit = (rhs, win, namespace["lags"], namespace["aux_start"])
             _CACHE[key] = hit
         return hit
+
+
+def _numba_function(py_func):
+    """``py_func(t, y, Z, p, out)`` compiled by numba with pointer arguments (IEEE semantics: x/0 gives inf or nan)."""
+    import numba
+    from .dop853 import FUNCTION
+
+    return numba.njit(FUNCTION.signature, error_model="numpy")(py_func)
 
 
 def _constant_history(history: Mapping[str, object], layout: dict, n_states: int) -> np.ndarray:

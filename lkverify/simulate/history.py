@@ -125,6 +125,28 @@ class DenseHistory:
         self._converter = None if converter == "auto" else "generic"
         self._fit_u, self._fit_inv = _chebyshev_fit(degree)
 
+    @classmethod
+    def from_dop853(cls, y0: np.ndarray, t0: float, tb: np.ndarray, coeffs: np.ndarray, piece: float) -> "DenseHistory":
+        """The dense solution of a compiled run (:mod:`lkverify.simulate.dop853`) with a constant history ``y0``.
+
+        ``tb`` (m + 1,) the step boundaries, ``coeffs`` (m, 8, n) every step's ``y_old`` and SciPy's
+        ``Dop853DenseOutput.F`` rows, converted to this class's polynomials by the exact map.
+        """
+        out = cls(None, t0, np.asarray(y0, dtype=float), 7, piece)
+        m = coeffs.shape[0]
+        out._m = m
+        out._tb = np.array(tb, dtype=float)
+        h = np.diff(out._tb)
+        out._mid = out._tb[:-1] + 0.5 * h
+        out._ihw = 2.0 / h
+        out._C = np.einsum("ij,mjn->min", _DOP853_U, coeffs[:, 1:])
+        out._C[:, 0] += coeffs[:, 0]
+        out._Y = np.empty((m + 1, out._n))
+        out._Y[0] = y0
+        out._Y[1:] = coeffs[:, 0] + coeffs[:, 1]         # y_old + F0: the end of each step (x = 1)
+        out._converter = "dop853"
+        return out
+
     # -- properties --------------------------------------------------------
     @property
     def t0(self) -> float:

@@ -27,23 +27,18 @@ from collections.abc import Callable, Mapping
 import numpy as np
 import sympy
 
-from ..errors import InputError
+from ..errors import InputError, UnsupportedInput
 from ..options import Budget, Deadline
 from ..status import Status
 from ..declare.symbols import t
 from ..declare.system import System
 from .compile import CompiledSystem, compile_system
 from .control import StepControl
+from .compiled import SCIPY, solve_compiled
+from .events import MAX_STEPS
 from .solver import DDESolution, Outcome, solve_dde
 
 __all__ = ["MAX_STEPS", "PreparedRun", "Trajectory", "prepare_run", "simulate"]
-
-#: The step floor.  Steps are at most ``min(delays)`` long (the method of steps), so a run
-#: needs at least ``(t_end − t0) / min(delays)`` steps: a run needing more than MAX_STEPS is
-#: refused up front (a tiny delay, a huge t_end).  During a run, when the mean of the last
-#: :data:`lkverify.simulate.events.FLOOR_WINDOW` steps falls below ``(t_end − t0) / MAX_STEPS`` the run
-#: stops: a blow-up (``diverged``) if ‖y‖ has grown, else a step collapse (a stiff system).
-MAX_STEPS = 10**7
 
 
 @dataclasses.dataclass(frozen=True)
@@ -77,6 +72,9 @@ class Trajectory:
     values : dict
         The run's resolved parameter values (name → checked value), for quantities along the
         run that depend on them (:class:`lkverify.simulate.experiments.FromValues`).
+    integrator : str
+        Which integrator ran: ``"compiled DOP853 (native code)"`` (or ``(numba)``), or
+        ``"SciPy DOP853 (Python right-hand side)"`` (see :func:`simulate`).
 
     Examples
     --------
@@ -108,6 +106,7 @@ class Trajectory:
     max_step: float = np.inf
     max_step_reason: str = "none"
     values: dict = dataclasses.field(default_factory=dict)
+    integrator: str = ""
 
     @property
     def status(self) -> Status:
@@ -363,7 +362,8 @@ def prepare_run(system: System, *, history: Mapping[str, object], t_end: float,
 def simulate(system: System, *, history: Mapping[str, object], t_end: float, values: Mapping[str, object] | None = None,
              t0: float = 0.0, step: StepControl = StepControl(), method: str = "DOP853",
              divergence_bound: float = 1e8, t_eval=None, progress: Callable[[float], None] | None = None,
-             integrals: str = "auto", budget: Budget | None = None, deadline: Deadline | None = None) -> Trajectory:
+             integrals: str = "auto", budget: Budget | None = None, deadline: Deadline | None = None,
+             integrator: str = "auto") -> Trajectory:
     """Integrate ``system`` from the initial ``history`` on [t0 − τ, t0] to ``t_end``.
 
     Parameters
@@ -379,6 +379,13 @@ def simulate(system: System, *, history: Mapping[str, object], t_end: float, val
         Tolerances and step limits (reported in the trajectory).
     method, divergence_bound, t_eval, progress
         Passed to :func:`lkverify.simulate.solver.solve_dde`.
+
+    The integrator: SciPy's DOP853 method of steps compiled (:mod:`lkverify.simulate.dop853`, the
+    right-hand side as native code) for every run it supports — window integrals and sums of
+    exponential kernels as auxiliary states, constant initial histories, ``method="DOP853"``; the
+    same steps as the SciPy path to rounding.  The SciPy path (:func:`~lkverify.simulate.solver.solve_dde`
+    with a Python right-hand side) runs the rest: quadrature terms (general kernels), histories that
+    are functions of t, ``method="RK45"``.  :attr:`Trajectory.integrator` says which ran.
     integrals : {"auto", "quadrature"}
         See :func:`lkverify.simulate.compile.compile_system`.
     budget : lkverify.options.Budget, optional
@@ -386,6 +393,10 @@ def simulate(system: System, *, history: Mapping[str, object], t_end: float, val
         with outcome ``budget`` (incomplete, undecided).
     deadline : lkverify.options.Deadline, optional
         A running deadline shared with other runs (used instead of ``budget``'s).
+    integrator : {"auto", "compiled", "scipy"}
+        ``"auto"``: the compiled integrator where it applies (below), else SciPy's; ``"compiled"``
+        refuses a run it does not support (:class:`~lkverify.errors.UnsupportedInput`);
+        ``"scipy"``: SciPy's steppers with the Python right-hand side (the reference path).
 
     The step floor (:data:`MAX_STEPS` = 1e7): a run that needs more than 1e7 steps
     because steps are capped at the shortest delay is refused up front; a run whose
@@ -425,6 +436,20 @@ def simulate(system: System, *, history: Mapping[str, object], t_end: float, val
     prep = prepare_run(system, history=history, t_end=t_end, values=values, t0=t0, step=step, integrals=integrals)
     if deadline is None and budget is not None:
         deadline = budget.deadline()
+    if integrator not in ("auto", "compiled", "scipy"):
+        raise InputError(f"integrator: expected 'auto', 'compiled' or 'scipy', got {integrator!r}")
+    compiled = None if integrator == "scipy" else solve_compiled(
+        prep, system, history=history, values=values, t_end=t_end, step=step, t0=t0, method=method,
+        divergence_bound=divergence_bound, t_eval=t_eval, deadline=deadline,
+        monitors=_monitors(system, prep.compiled.layout), min_mean_step=(t_end - t0) / MAX_STEPS, integrals=integrals)
+    if compiled is None and integrator == "compiled":
+        raise UnsupportedInput(f"{system.name or 'the system'}: the compiled integrator takes windows and sums of "
+                               f"exponential kernels, constant histories and method='DOP853'; this run has "
+                               f"{_why_scipy(prep, history, method, integrals)}; use integrator='auto' or 'scipy'")
+    if compiled is not None:
+        if progress is not None:
+            progress(1.0)
+        return _trajectory(system, prep, compiled[0], compiled[2], values, step, compiled[1])
     comp, phi = prep.compiled, prep.history
     n_aux = len(comp.aux)
     aux0 = np.zeros(n_aux)
@@ -440,8 +465,31 @@ def simulate(system: System, *, history: Mapping[str, object], t_end: float, val
                     resync=comp.resync if any(a.kind == "window" for a in comp.aux) else None,
                     monitors=_monitors(system, comp.layout), progress=progress, deadline=deadline,
                     min_mean_step=(t_end - t0) / MAX_STEPS)
-    seconds = time.monotonic() - start
-    if t_eval is not None and sol.y_eval is not None:
+    return _trajectory(system, prep, sol, time.monotonic() - start, values, step, SCIPY)
+
+
+def _why_scipy(prep, history, method, integrals) -> str:
+    """What keeps a run off the compiled integrator (for the error message)."""
+    if method != "DOP853":
+        return f"method={method!r}"
+    if integrals != "auto" or prep.compiled.quads:
+        return "a quadrature term (a general kernel)" if prep.compiled.quads else f"integrals={integrals!r}"
+    def in_t(h):
+        if isinstance(h, (list, tuple)):
+            return any(in_t(v) for v in h)
+        if isinstance(h, str):
+            return "t" in h
+        return callable(h) and not isinstance(h, sympy.Basic) or (isinstance(h, sympy.Basic) and bool(h.free_symbols))
+
+    if any(in_t(h) for h in history.values()):
+        return "a history that is a function of t"
+    return "a right-hand side the compiled family refuses (see compile_family)"
+
+
+def _trajectory(system, prep, sol, seconds, values, step, integrator) -> Trajectory:
+    """The Trajectory of a solved run (either integrator)."""
+    comp = prep.compiled
+    if sol.t_eval is not None and sol.y_eval is not None:
         times, Y = np.asarray(sol.t_eval), np.asarray(sol.y_eval)
         keep = times <= sol.t[-1] + 1e-12
         times, Y = times[keep], Y[keep]
@@ -452,7 +500,7 @@ def simulate(system: System, *, history: Mapping[str, object], t_end: float, val
     resolved = dict(system.parameters.resolve(values or {}, use_defaults=True))
     return Trajectory(system.name, sol.outcome, sol.message, times, states, sol.t_fail, drift, sol.nfev,
                       sol.n_steps, seconds, sol, dict(comp.layout), step, prep.step_cap, prep.step_cap_reason,
-                      resolved)
+                      resolved, integrator)
 
 
 class _InitialPast:

@@ -325,8 +325,8 @@ def _run(plan, grid, chunks, todo, valid, options, finished, deadline, errors, t
     small = options.scheduler is None and options.workers is None and points < IN_PROCESS_POINTS
     if sim.family is not None and not small and options.scheduler != "synchronous":
         # the integrator kernel is compiled once per machine (numba's disk cache): here, before the workers
-        # start, rather than by every worker at once on a first run (about 35 s each)
-        from ..simulate import dopri  # noqa: F401
+        # start, rather than by every worker at once on a first run
+        from ..simulate import dop853  # noqa: F401
     tasks = {k: (grid.floats(chunks[k]), valid[chunks[k]]) for k in todo}
     # a small sweep runs in process: starting a cluster costs more than it saves
     for k, cols, exc in run_tasks(run_chunk, tasks, options, in_process=small, shared=sim, deadline=deadline,

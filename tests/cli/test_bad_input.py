@@ -265,7 +265,9 @@ def test_runs_below_the_step_floor_are_refused_up_front(capsys, no_computing, ar
 
 
 def test_simulate_budget_ends_undecided(capsys):
-    code, out, err = run(capsys, "simulate", "aleksandrov2023.fig6", "--budget", "0.3", "--json")
+    # t_end = 10⁵ needs more than 10⁵ steps (they are at most τ = 1 long): the compiled integrator checks the
+    # budget after 20,000 and 100,000 steps, far beyond 0.3 s
+    code, out, err = run(capsys, "simulate", "aleksandrov2023.fig6", "--budget", "0.3", "--t-end", "100000", "--json")
     assert code == 1 and "Traceback" not in err
     import json
 
