@@ -64,7 +64,8 @@ stats = np.zeros((1, 4), dtype=np.int64)
 s = time.perf_counter()
 dop853.run_batch(fn["rhs"], fn["win"], np.zeros((1, 1)), np.array([[1.0]]), np.array([1.0]), np.array([[1.0]]),
                  np.zeros((0, 2), dtype=np.int64), np.array([[1.0, 2.0]]), np.array([2]), 0.0, np.array([1.0, 2.0]),
-                 1e-8, 1e-10, np.inf, 1e8, 1000, 2e-7, np.zeros(1, dtype=np.int64), out, code, t_fail, stats,
+                 1e-8, 1e-10, np.inf, 1e8, 1000, 2e-7, np.zeros(1, dtype=np.int64), np.array([1e-3]), out, code,
+                 t_fail, stats,
                  np.zeros(1), np.zeros((0, 8, 1)))
 T["first call"] = time.perf_counter() - s
 if dop853.OUTCOMES[code[0]].value != "success" or out[0, :, 0].round(10).tolist() != [0.0, -0.5]:

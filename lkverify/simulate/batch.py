@@ -46,7 +46,7 @@ from .dop853 import OUTCOMES, run_batch
 from .events import DISCONTINUITY_ORDER, MAX_STEPS, breakpoints
 from .solver import Outcome
 
-__all__ = ["BatchResult", "DISCONTINUITY_ORDER", "OUTCOMES", "integrate"]
+__all__ = ["BatchResult", "DISCONTINUITY_ORDER", "OUTCOMES", "first_steps", "integrate"]
 
 _SUCCESS, _BUDGET = OUTCOMES.index(Outcome.SUCCESS), OUTCOMES.index(Outcome.BUDGET)
 
@@ -173,14 +173,52 @@ def integrate(family, points, history, *, t_end: float, t_eval, rtol: float = 1e
     distinct, group = np.unique(x0s, axis=0, return_inverse=True)
     windows = np.array(family.windows, dtype=np.int64).reshape(-1, 2)
     no_store = (np.zeros(1), np.zeros((0, 8, family.n)))
+    first = first_steps(rhs, pts, y0, x0s, nl, targets[:, 0] - t0, float(t0), float(rtol), float(atol))
     for g, x0 in enumerate(distinct):      # the kernel takes one history: one call per distinct history
         run_batch(rhs, win, pts, y0, np.ascontiguousarray(x0), lags, windows, targets, counts, float(t0), te,
                   float(rtol), float(atol), math.inf, float(divergence_bound), int(max_steps),
-                  (t_end - t0) / MAX_STEPS, (skip | (group.ravel() != g)).astype(np.int64), y, code, t_fail,
-                  stats, *no_store)
+                  (t_end - t0) / MAX_STEPS, (skip | (group.ravel() != g)).astype(np.int64), first, y, code,
+                  t_fail, stats, *no_store)
+    stats[:, 1] += np.where(skip, 0, np.where(first > 0, 2, 1))     # first_steps' evaluations
     t_fail[code == _SUCCESS] = np.nan
     return BatchResult(code, t_fail, te, y, dict(family.layout), stats[:, 0].copy(), stats[:, 1].copy(),
                        stats[:, 2].copy(), time.perf_counter() - start)
+
+
+def first_steps(rhs, P, Y0, X0, n_lags: int, spans, t0: float, rtol: float, atol: float) -> np.ndarray:
+    """SciPy's ``select_initial_step`` (error order 7, DOP853) for every point: the kernel's ``H0``.
+
+    ``rhs`` a compiled function (its ``ctypes``), ``P`` (N, k) the points, ``Y0`` (N, n) the initial
+    vectors, ``X0`` (N, n_states) the constant histories (every delayed value of the two evaluations),
+    ``spans`` (N,) the first segment's lengths.  The step is not capped here (the kernel caps it at
+    its largest step); −1 where f(t0, y0) is not finite.
+    """
+    import ctypes
+
+    N, n = Y0.shape
+    out = np.empty(N)
+    f0, f1, yt = (np.empty(n) for _ in range(3))
+    addr = [a.ctypes.data_as(ctypes.POINTER(ctypes.c_double)) for a in (f0, f1, yt)]
+    call = rhs.ctypes
+    with np.errstate(all="ignore"):
+        for i in range(N):
+            y, p = np.ascontiguousarray(Y0[i]), np.ascontiguousarray(P[i])
+            Z = np.ascontiguousarray(np.tile(X0[i], max(n_lags, 1)))
+            yp, Zp, pp = (a.ctypes.data_as(ctypes.POINTER(ctypes.c_double)) for a in (y, Z, p))
+            call(t0, yp, Zp, pp, addr[0])
+            if not np.all(np.isfinite(f0)):
+                out[i] = -1.0
+                continue
+            scale = atol + np.abs(y) * rtol
+            d0, d1 = (float(np.sqrt(np.mean((v / scale) ** 2))) for v in (y, f0))
+            h0 = min(1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1, float(spans[i]))
+            yt[:] = y + h0 * f0
+            call(t0 + h0, addr[2], Zp, pp, addr[1])
+            d2 = float(np.sqrt(np.mean(((f1 - f0) / scale) ** 2))) / h0
+            h1 = max(1e-6, h0 * 1e-3) if (d1 <= 1e-15 and d2 <= 1e-15) else (0.01 / max(d1, d2)) ** (1 / 8)
+            h = min(100 * h0, h1, float(spans[i]))
+            out[i] = h if (h > 0 and np.isfinite(h)) else float(spans[i])
+    return out
 
 
 def _histories(family, history, n: int) -> np.ndarray:

@@ -32,7 +32,7 @@ import types
 
 import numpy as np
 
-from ..errors import UnsupportedInput
+from ..errors import InputError, UnsupportedInput
 from .control import StepControl
 from .events import DISCONTINUITY_ORDER, FLOOR_WINDOW, breakpoints
 from .history import DenseHistory
@@ -90,6 +90,7 @@ class _Kernel:
         self.store = _FIRST_STORE
 
     def call(self, limit: int):
+        from .batch import first_steps          # numba: imported when a run starts
         from .dop853 import run_batch
 
         fam, n = self.fam, self.n
@@ -101,10 +102,16 @@ class _Kernel:
         store_t, store_c = np.zeros(self.store + 1), np.zeros((self.store, 8, n))
         store_t[0] = self.t0
         windows = np.array(fam.windows, dtype=np.int64).reshape(-1, 2)
+        first = first_steps(rhs, self.p.reshape(1, -1), self.y0.reshape(1, -1), self.x0.reshape(1, -1),
+                            self.lags.shape[1], self.targets[:, 0] - self.t0, self.t0, self.rtol, self.atol)
+        if first[0] < 0:
+            raise InputError(f"the right-hand side is not finite at t0={self.t0:g}; expected finite values at the "
+                             f"initial state; check coefficients and the history at t0")
         run_batch(rhs, win, self.p.reshape(1, -1), self.y0.reshape(1, -1), np.ascontiguousarray(self.x0), self.lags,
                   windows, self.targets, np.array([self.targets.shape[1]], dtype=np.int64), self.t0, te,
                   self.rtol, self.atol, float(self.hcap), self.bound, int(limit), self.floor,
-                  np.zeros(1, dtype=np.int64), out, code, t_fail, stats, store_t, store_c)
+                  np.zeros(1, dtype=np.int64), first, out, code, t_fail, stats, store_t, store_c)
+        stats[0, 1] += 2                           # first_steps' evaluations
         return int(code[0]), float(t_fail[0]), stats[0].copy(), store_t, store_c
 
     def until_done(self, deadline) -> None:

@@ -10,9 +10,10 @@ numba code only (editing it recompiles the kernel: ``benchmarks/bench_compile.py
 Method (per point; the method of :func:`lkverify.simulate.solver.solve_dde` with SciPy's DOP853, compiled)
 ----------------------------------------------------------------------------------------------------------
 * Dormand–Prince 8(5,3) with the tableau, the error estimate, the step-size control and the
-  7th-order dense output of :class:`scipy.integrate.DOP853` (read from that class's attributes),
-  the first step by SciPy's ``select_initial_step`` (error order 7); steps below 10 units in the
-  last place of t fail as SciPy's do.
+  7th-order dense output of :class:`scipy.integrate.DOP853` (read from that class's attributes);
+  the first step is SciPy's ``select_initial_step`` (error order 7), computed by the caller
+  (:func:`lkverify.simulate.batch.first_steps`: it keeps this kernel, and its compile time,
+  smaller); steps below 10 units in the last place of t fail as SciPy's do.
 * Every step is at most ``min(hcap, lags)`` long, so every delayed stage value
   ``y(t_n + c h − lag)`` lies in the accepted history: the constant initial history for
   arguments ≤ t0 (or before the first step), else the dense output of the accepted step
@@ -36,7 +37,7 @@ Outcome codes: :data:`OUTCOMES` (see :mod:`lkverify.simulate.batch`).
 >>> stats = np.zeros((1, 4), dtype=np.int64)
 >>> run_batch(fn["rhs"], fn["win"], np.zeros((1, 1)), np.array([[1.0]]), np.array([1.0]), np.array([[1.0]]),
 ...           np.zeros((0, 2), dtype=np.int64), np.array([[1.0, 2.0]]), np.array([2]), 0.0, np.array([1.0, 2.0]),
-...           1e-8, 1e-10, np.inf, 1e8, 1000, 2e-7, np.zeros(1, dtype=np.int64), out, code, t_fail, stats,
+...           1e-8, 1e-10, np.inf, 1e8, 1000, 2e-7, np.zeros(1, dtype=np.int64), np.array([1e-3]), out, code, t_fail, stats,
 ...           np.zeros(1), np.zeros((0, 8, 1)))
 >>> OUTCOMES[code[0]].value, (out[0, :, 0].round(10) + 0.0).tolist()       # x = 1 − t, then 1 − t + (t − 1)²/2
 ('success', [0.0, -0.5])
@@ -93,7 +94,7 @@ _TC = np.concatenate(([0.0], _C[1:], [1.0], _CX))
 _ROW = np.array([0, *range(1, _NS + 1), _NS + 1, _NS + 2, _NS + 3], dtype=np.int64)
 
 _KERNEL = types.void(FUNCTION, FUNCTION, _mat, _mat, _vec, _mat, types.int64[:, ::1], _mat, types.int64[::1], _f8,
-                     _vec, _f8, _f8, _f8, _f8, _i8, _f8, types.int64[::1], _cube, types.int64[::1], _vec,
+                     _vec, _f8, _f8, _f8, _f8, _i8, _f8, types.int64[::1], _vec, _cube, types.int64[::1], _vec,
                      types.int64[:, ::1], _vec, _cube)
 
 
@@ -108,12 +109,14 @@ def _ptr(typingctx, arr):
 
 @numba.njit(_KERNEL, cache=True, error_model="numpy")
 def run_batch(rhs, win, P, Y0, x0, lags, wk, targets, counts, t0, t_eval, rtol, atol, hcap, bound, max_steps,
-              floor, skip, out, code, t_fail, stats, store_t, store_c):
+              floor, skip, H0, out, code, t_fail, stats, store_t, store_c):
     """Every point ``i`` with ``skip[i] == 0``, one after the other.
 
     ``P`` (N, k) the points, ``Y0`` (N, n) initial vectors (auxiliary states included), ``x0`` (n_states,)
     the constant history, ``lags`` (N, n_lags), ``wk`` (n_windows, 2) the windows' (component, lag index),
-    ``targets[i, :counts[i]]`` the breakpoints of point i then t_end, ``hcap`` the largest step asked for.
+    ``targets[i, :counts[i]]`` the breakpoints of point i then t_end, ``hcap`` the largest step asked for,
+    ``H0`` the first step of every point (:func:`lkverify.simulate.batch.first_steps`; negative: f(t0, y0) is
+    not finite, the point ``diverged`` at t0).
     Writes the samples at ``t_eval`` into ``out`` (N, m, n_states; untouched after a failure), the outcome
     codes into ``code``, the end or failure time into ``t_fail``, (accepted steps, rhs evaluations, rejected
     steps, stored steps) into ``stats``.  With ``store_c`` of shape (S, 8, n), S > 0, the accepted steps of
@@ -173,32 +176,9 @@ def run_batch(rhs, win, P, Y0, x0, lags, wk, targets, counts, t0, t_eval, rtol, 
             nfev = 1
         it, h_abs, h_next = 0, 0.0, -1.0
         if outcome < 0:
-            # SciPy's select_initial_step (error order 7) on [t0, first target]
-            span = targets[pt, 0] - t0
-            d0, d1 = 0.0, 0.0
-            for i in range(n):
-                sk = atol + abs(y[i]) * rtol
-                d0 += (y[i] / sk) ** 2
-                d1 += (K[0, i] / sk) ** 2
-            d0, d1 = math.sqrt(d0 / n), math.sqrt(d1 / n)
-            h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
-            h0 = min(h0, span)
-            for i in range(n):
-                yt[i] = y[i] + h0 * K[0, i]
-            rhs(t0 + h0, _ptr(yt), _ptr(Z), _ptr(p), _ptr(K[1]))
-            nfev += 1
-            d2 = 0.0
-            for i in range(n):
-                sk = atol + abs(y[i]) * rtol
-                d2 += ((K[1, i] - K[0, i]) / sk) ** 2
-            d2 = math.sqrt(d2 / n) / h0
-            if d1 <= 1e-15 and d2 <= 1e-15:
-                h1 = max(1e-6, h0 * 1e-3)
-            else:
-                h1 = (0.01 / max(d1, d2)) ** (1.0 / 8.0)
-            h_abs = min(100.0 * h0, h1, span, hmax)
-            if not (h_abs > 0.0 and math.isfinite(h_abs)):
-                h_abs = min(span, hmax)
+            h_abs = min(H0[pt], hmax)           # SciPy's select_initial_step, computed by the caller
+            if H0[pt] < 0.0:                     # f(t0, y0) not finite
+                outcome = _DIVERGED
             scale = max(1.0, math.sqrt(yy))
             recent = np.zeros(_WINDOW)
             recent_sum = 0.0

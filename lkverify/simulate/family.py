@@ -392,11 +392,11 @@ def _compiled(source: str, native: str | None, key: str):
 
 
 def _numba_function(py_func):
-    """``py_func(t, y, Z, p, out)`` compiled by numba with pointer arguments (IEEE semantics: x/0 gives inf or nan)."""
+    """``py_func(t, y, Z, p, out)`` compiled by numba as a C callback with pointer arguments (IEEE: x/0 is inf or nan)."""
     import numba
     from .dop853 import FUNCTION
 
-    return numba.njit(FUNCTION.signature, error_model="numpy")(py_func)
+    return numba.cfunc(FUNCTION.signature, error_model="numpy")(py_func)     # a C callback: also ``.ctypes``
 
 
 def _constant_history(history: Mapping[str, object], layout: dict, n_states: int) -> np.ndarray:
