@@ -8,6 +8,7 @@ ROWS = (
     ('aleksandrov2017.corollary1', 'aleksandrov2017', 'check', 'Corollary 1: h = (t+1)^(−β) satisfies (10), (11) iff β ≤ 1 (14), decided symbolically', 'aleksandrov2017'),
     ('aleksandrov2017.remark2', 'aleksandrov2017', 'check', 'Remark 2: for h = (t+1)^(−β), β > 1, the energy keeps c̃Ṽ(0) > 0 (certified c̃, simulated limit)', 'aleksandrov2017'),
     ('aleksandrov2017.theorem2', 'aleksandrov2017', 'theorem', 'Theorem 2: nonlinear damping h(t)grad W, instance W = (ωᵀDω)² (μ = 3), σ = 3, to V̇ ≤ −α8h^νV^λ', 'aleksandrov2017'),
+    ('aleksandrov2017.theorem2_mu5', 'aleksandrov2017', 'theorem', 'Theorem 2 with W = (ωᵀDω)^3 (μ = 5), σ = 5: the chain to V̇ ≤ −α8h^νV^λ, λ = 3', 'aleksandrov2017'),
     ('aleksandrov2017.theorem2_example', 'aleksandrov2017', 'example', 'Theorem 2 / Corollary 2: W = (ωᵀDω)², h = (1+t)^(−β), β = 7/8 and 8/7', 'aleksandrov2017'),
     ('aleksandrov2017.corollary2', 'aleksandrov2017', 'check', 'Corollary 2: nonlinear damping (W = (ωᵀDω)², μ = 3), h = (t+1)^(−β): asymptotically stable iff β ≤ 1 (the conditions exact; for β > 1 a certified positive limit energy)', 'aleksandrov2017'),
     ('aleksandrov2023.section6', 'aleksandrov2023', 'check', "Section 6: each statement about Figs. 1–7 — (13), (14), μ > 1 exactly at the figure's gains, behaviour from the figure items' runs", 'aleksandrov2023'),

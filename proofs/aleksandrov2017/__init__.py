@@ -25,7 +25,8 @@ Modules: :mod:`.equations` (parameters, states, (2), (9)), :mod:`.theorem1`,
 :mod:`.example` (section 6), :mod:`.lemma1` (Lemma 1 with a certified δ(ε)),
 :mod:`.conditions_h` (conditions (5), (10), (11) on h decided symbolically; Corollary 1),
 :mod:`.theorem2` (nonlinear damping), :mod:`.theorem2_example` (Theorem 2 / Corollary 2 simulated),
-:mod:`.theorem2_envelope` (the algebraic envelope with α8 estimated).
+:mod:`.theorem2_envelope` (the algebraic envelope with α8 estimated),
+:mod:`.theorem2_exponents` (Theorem 2 with W = (ωᵀDω)^{(μ+1)/2}, σ = μ odd ≥ 3: the item for μ = 5).
 """
 
 from .equations import PAPER, D, J, P, a1, a2, eps, eta, gamma, h, nu, omega, r1, r2, r3, s1, s2, s3, system
@@ -36,6 +37,7 @@ from .lemma1 import EPSILONS, Lemma1Constants, lemma1, lemma1_delta, lemma1_F
 from .conditions_h import ConditionsOnH, corollary1, decide_h_conditions
 from .remark2 import remark2
 from .theorem2 import system4, theorem2
+from .theorem2_exponents import theorem2_for, theorem2_mu5
 from .theorem2_example import theorem2_example
 from .corollary2 import corollary2
 
@@ -55,6 +57,8 @@ __all__ = [
     "remark2",
     # Theorem 2 (nonlinear damping)
     "system4", "theorem2",
+    # Theorem 2 for other exponents μ = σ (odd ≥ 3)
+    "theorem2_for", "theorem2_mu5",
     # Theorem 2 / Corollary 2 simulated (β = 7/8 and 8/7), the algebraic envelope with α8 estimated
     "theorem2_example",
     # Corollary 2

@@ -20,6 +20,7 @@ only decreases through the damping.  The claim is proved for every h, ν, γ, J,
 
 The system, V and V̇ are in :mod:`.theorem2_functional`; the chain (16), V̇ ≤ W, V̇ ≤ −α8h^νV^λ and the
 algebraic envelope, checked exact/certified at choices found at the run's values, in :mod:`.theorem2_chain`.
+Other odd exponents μ = σ (the item ``theorem2_mu5``, :func:`.theorem2_exponents.theorem2_for`): :mod:`.theorem2_exponents`.
 """
 
 from lkverify import Theorem

@@ -31,6 +31,15 @@ region e1 ≤ δ1, e2 ≤ δ1, w ≤ δ_ω (the proof's δ2-neighbourhood bounds
 The choices γ, ε, δ1, δ_ω, η_w, η_h, α8 are computed at the run's values by :func:`find_choices` (exact
 rationals, closed forms; the steps are then proved at them).  They are tiny (γ ≈ 2·10⁻⁷, α8 ≈ 3·10⁻⁸ at the
 section 6 gains): the term-wise Young splits are crude, as the proof's "γ small enough" allows.
+
+Other exponents.  Everything above is written for an odd μ = σ ≥ 3 and built by :func:`chain_steps` (μ, σ),
+:func:`conclusion` (σ) and :func:`find_choices` (``mu=``, ``sigma=``); the module-level :data:`steps`,
+:data:`CONCLUSION`, :data:`DEFINITIONS` are μ = σ = 3 (the objects above, unchanged).  For general μ = σ the
+(4, 4/3) and (3/2, 3) splits of the ḣ-term become (σ+1, (σ+1)/σ) and (σ/a, σ/(σ−a)) (:func:`hdot_young`),
+the h^ν w²e-splits become ((σ+1)/2, (σ+1)/(σ−1)) and ((σ−1)/a, (σ−1)/(σ−1−a)) (:func:`mixed_young`), the
+extra ‖η‖^{σ−3} of the ηᵀM-term goes through the tree, w^μ ≤ δ_ω^{μ−2}w² in the grad W-term, and
+(ωᵀDω)^j enters a rule's factor only as an even power (|q|^{2i} = q^{2i} exactly; the odd rest is a
+Rayleigh or Cauchy–Schwarz form, :func:`_damping`, :func:`_grad_term`).  Items: :mod:`.theorem2_exponents`.
 """
 
 from __future__ import annotations
@@ -52,10 +61,10 @@ from .conditions_h import decide_h_conditions
 from .equations import D, J, a1, a2, eps, eta, gamma, h, nu, omega
 from .theorem1_chain import (E1, E2, HW, MEASURES as _MEASURES1, W_, _d_norm, _eig, _eta_norm, _h_of, _j_norm,
                              _Jw, _M_norm, _rational, _scalar, condition11, lemma6)
-from .theorem2_functional import M as _M, derivation2, functional2, mu, sigma, structured, system4
+from .theorem2_functional import M as _M, instance, sigma
 
-__all__ = ["CONCLUSION", "LAMBDA", "MEASURES", "REGION", "chain_steps", "eta_on_region", "find_choices",
-           "steps"]
+__all__ = ["CONCLUSION", "LAMBDA", "MEASURES", "REGION", "chain_steps", "conclusion", "eta_on_region", "find_choices",
+           "hdot_young", "mixed_young", "steps"]
 
 delta1 = _scalar("delta1", latex=r"\delta_1", description="region ‖s_i − r_i‖ ≤ δ1 of the V̇ bounds")
 delta_w = _scalar("delta_w", latex=r"\delta_\omega", description="region ‖ω‖ ≤ δ_ω of Theorem 2's V̇ bound")
@@ -79,20 +88,26 @@ eta_w, eta_h = (_scalar(n, latex=x, description=d) for n, x, d in (
 
 
 @functools.lru_cache(maxsize=32)
-def _condition15(h_value, nu_value):
+def _condition15(h_value, nu_value, mu_value=3):
     """(status, L, detail) of (15) at h, ν, μ: L the exact sup of |ḣ|/h^{1+(1−ν)/(μ+1)} (:mod:`.conditions_h`)."""
-    res = decide_h_conditions(h_value, nu=nu_value, mu=mu, budget=10.0)
+    res = decide_h_conditions(h_value, nu=nu_value, mu=sympy.Integer(mu_value), budget=10.0)
     r = next(r for r in res if r.name.startswith("(15)"))
     return r.status, r.value, r.detail
 
 
-def _L15(v):
-    status, L, _ = _condition15(_h_of(v), sympy.sympify(v["nu"]))
+def _L15(v, mu_value=3):
+    status, L, _ = _condition15(_h_of(v), sympy.sympify(v["nu"]), int(mu_value))
     return L if status is Status.EXACT and L is not None else sympy.Symbol("L_undecided", positive=True)
 
 
-DEFINITIONS = {j_min: _eig("J", "min"), j_max: _eig("J", "max"), d_min: _eig("D", "min"), d_max: _eig("D", "max"),
-               L15: _L15}
+def _definitions(mu_value):
+    """The named constants of the steps: the extreme eigenvalues of J and D, and L of (15) with this μ."""
+    L = _L15 if mu_value == 3 else functools.partial(_L15, mu_value=mu_value)
+    return {j_min: _eig("J", "min"), j_max: _eig("J", "max"), d_min: _eig("D", "min"), d_max: _eig("D", "max"),
+            L15: L}
+
+
+DEFINITIONS = _definitions(3)
 
 def eta_on_region(ctx) -> Condition:
     """‖η‖ ≤ a1‖s1−r1‖ + a2‖s2−r2‖ ≤ (a1 + a2)δ1 on the region: the norm tree of η (exact) and e_i ≤ δ1."""
@@ -122,13 +137,21 @@ def eta_tree(ctx) -> Condition:
     return Condition(text, Status.EXACT if all(c.status is Status.EXACT for c in conds) else Status.CERTIFIED)
 
 
-def condition15(ctx) -> Condition:
-    """(15) |ḣ| ≤ L h^{1+(1−ν)/(μ+1)} for t ≥ 0 at the run's h, ν, μ = 3, decided exactly (L the exact sup)."""
-    status, L, detail = _condition15(_h_of(ctx.values), sympy.sympify(ctx.values["nu"]))
-    if L is None:
-        return Condition("(15) |ḣ| ≤ L h^(1+(1−ν)/(μ+1)) for t ≥ 0, some L",
-                         Status.UNDECIDED if status is Status.EXACT else status, detail)
-    return Condition(f"(15) |ḣ| ≤ L h^(1+(1−ν)/(μ+1)) for t ≥ 0 with L = {L}", status, detail)
+def _condition15_rule(mu_value):
+    """The decided condition (15) |ḣ| ≤ L h^{1+(1−ν)/(μ+1)} at the run's h, ν and this μ (a rewrite's lemma)."""
+    def condition15(ctx) -> Condition:
+        status, L, detail = _condition15(_h_of(ctx.values), sympy.sympify(ctx.values["nu"]), mu_value)
+        if L is None:
+            return Condition("(15) |ḣ| ≤ L h^(1+(1−ν)/(μ+1)) for t ≥ 0, some L",
+                             Status.UNDECIDED if status is Status.EXACT else status, detail)
+        return Condition(f"(15) |ḣ| ≤ L h^(1+(1−ν)/(μ+1)) for t ≥ 0 with L = {L}", status, detail)
+
+    condition15.__doc__ = (f"(15) |ḣ| ≤ L h^{{1+(1−ν)/(μ+1)}} for t ≥ 0 at the run's h, ν, μ = {mu_value}, decided "
+                           f"exactly (L the exact sup).")
+    return condition15
+
+
+condition15 = _condition15_rule(3)
 
 
 def q_lower(ctx) -> Condition:
@@ -141,17 +164,100 @@ def q_lower(ctx) -> Condition:
                      res.status if ok else Status.FAILED, "" if ok else res.detail)
 
 
-def _cross_term(sign):
-    """γh^ν‖η‖²ωᵀJη ≷ ±γ‖J‖(a1 + a2)²δ1² h^ν Σ a_i(w² + e_i²)/2 (Cauchy–Schwarz, l on the region, Young)."""
+def q_upper(ctx) -> Condition:
+    """|ωᵀDω| ≤ λ_max(D)‖ω‖²: λ_max(D)I − D ⪰ 0 and D ⪰ 0 (so |ωᵀDω| = ωᵀDω), decided exactly."""
+    Dm = sympy.Matrix(ctx.at(D))
+    dmax = _eig("D", "max")(ctx.values)
+    top = matrix_positive_definite(dmax * sympy.eye(Dm.shape[0]) - Dm, name="λ_max I − D", semidefinite=True)
+    low = matrix_positive_definite(Dm, name="D", semidefinite=True)
+    bad = [r for r in (top, low) if not r.status.is_proof]
+    return Condition(f"|ωᵀDω| ≤ {dmax}‖ω‖² (λ_max(D)I − D ⪰ 0, D ⪰ 0)",
+                     Status.FAILED if bad else Status.EXACT if all(r.status is Status.EXACT for r in (top, low))
+                     else Status.CERTIFIED, "; ".join(r.detail for r in bad))
+
+
+# ---- the Young splits, derived by hand for σ = μ (the rules check each) ----------------------------
+def _larger_first(one, two):
+    """Two (x, p) factors of a Young pair, the one with the larger power of its e_i first (ties: e1 first)."""
+    return (one, two) if one[2] >= two[2] else (two, one)
+
+
+def hdot_young(sg) -> tuple:
+    """The two Young steps of the ḣ-term: c·h^{(σν+1)/(σ+1)} w e1^a e2^{σ−a} into h w^{σ+1} and h^ν e_i^{σ+1}.
+
+    First, for each a = σ … 0, x = h^{1/(σ+1)}w, y = h^{σν/(σ+1)}e1^a e2^{σ−a} with (p, q) = (σ+1, (σ+1)/σ)
+    and weight η_h: xy ≤ η_h h w^{σ+1}/(σ+1) + σ/(σ+1)·η_h^{−1/σ} h^ν e1^{a(σ+1)/σ} e2^{(σ−a)(σ+1)/σ}; then
+    each mixed product (0 < a < σ) by (p, q) = (σ/a, σ/(σ−a)) with weight 1 into (a/σ)h^ν e1^{σ+1} +
+    ((σ−a)/σ)h^ν e2^{σ+1}.  The h-powers add up because (15) gives h^{ν−1}|ḣ| ≤ L h^{ν+(1−ν)/(μ+1)} and
+    ν + (1−ν)/(μ+1) = 1/(σ+1) + σν/(σ+1) exactly when σ = μ (or ν = 1).
+
+    Examples
+    --------
+    >>> first, second = hdot_young(5)
+    >>> len(first.pairs), len(second.pairs), first.pairs[1][2:4]
+    (6, 4, (6, 6/5))
+    """
+    s = sympy.Integer(sg)
+    first = YoungEach(tuple((hh ** (1 / (s + 1)) * w, hh ** (s * nu / (s + 1)) * e1**a * e2 ** (s - a), s + 1,
+                             (s + 1) / s, eta_h) for a in range(sg, -1, -1)))
+    second = []
+    for a in range(sg - 1, 0, -1):
+        (x, p, _), (y, qq, _) = _larger_first((hh ** (a * nu / s) * e1 ** (a * (s + 1) / s), s / a, a),
+                                              (hh ** ((s - a) * nu / s) * e2 ** ((s - a) * (s + 1) / s), s / (s - a),
+                                               s - a))
+        second.append((x, y, p, qq, 1))
+    return first, YoungEach(tuple(second))
+
+
+def mixed_young(sg, shift=0) -> tuple:
+    """The two Young steps of c·h^{ν+s}w²(a1e1 + a2e2)^{σ−1} into h^{ν+s}w^{σ+1} and h^{ν+s}e_i^{σ+1} (s = ``shift``).
+
+    First, for each monomial e1^a e2^{σ−1−a} (the pure ones first), x = h^{2(ν+s)/(σ+1)}w²,
+    y = h^{(σ−1)(ν+s)/(σ+1)}e1^a e2^{σ−1−a} with (p, q) = ((σ+1)/2, (σ+1)/(σ−1)) and weight η_w:
+    xy ≤ 2η_w x^p/(σ+1) + (σ−1)/(σ+1)·η_w^{−2/(σ−1)} y^q; then each mixed e1^{a(σ+1)/(σ−1)}e2^{…} by
+    (p, q) = ((σ−1)/a, (σ−1)/(σ−1−a)) with weight 1.  Summed over the binomial expansion (Σ_a a·C(n,a)a1^a a2^{n−a}
+    = n a1(a1+a2)^{n−1}) this is :func:`_mixed`.
+
+    Examples
+    --------
+    >>> first, second = mixed_young(5)
+    >>> [p[2:4] for p in first.pairs[:1]], len(second.pairs)
+    ([(3, 3/2)], 3)
+    """
+    s, n = sympy.Integer(sg), nu + shift
+    order = [sg - 1, 0, *range(sg - 2, 0, -1)]
+    first = YoungEach(tuple((hh ** (2 * n / (s + 1)) * w**2, hh ** ((s - 1) * n / (s + 1)) * e1**a * e2 ** (sg - 1 - a),
+                             (s + 1) / 2, (s + 1) / (s - 1), eta_w) for a in order))
+    second = []
+    for a in range(sg - 2, 0, -1):
+        b = s - 1 - a
+        (x, p, _), (y, qq, _) = _larger_first((hh ** (a * n / (s - 1)) * e1 ** (a * (s + 1) / (s - 1)), (s - 1) / a, a),
+                                              (hh ** (b * n / (s - 1)) * e2 ** (b * (s + 1) / (s - 1)), (s - 1) / b, b))
+        second.append((x, y, p, qq, 1))
+    return first, YoungEach(tuple(second))
+
+
+def _mixed(c, sg, shift=0):
+    """c·h^{ν+s}w²(a1e1 + a2e2)^{σ−1} after :func:`mixed_young`, in closed form."""
+    s, A = sympy.Integer(sg), a1 + a2
+    core = (A ** (s - 1) * eta_w * w ** (s + 1)
+            + (s - 1) / 2 * eta_w ** (-2 / (s - 1)) * A ** (s - 2) * (a1 * e1 ** (s + 1) + a2 * e2 ** (s + 1)))
+    out = c * hh**nu * core * 2 / (s + 1)
+    return out * hh if shift else out
+
+
+def _cross_term(sign, sg=3):
+    """γh^ν‖η‖^{σ−1}ωᵀJη ≷ ±γ‖J‖((a1 + a2)δ1)^{σ−1} h^ν Σ a_i(w² + e_i²)/2 (Cauchy–Schwarz, l on the region, Young)."""
     young = YoungEach(tuple((hh ** (nu / 2) * w, hh ** (nu / 2) * x, 2, 2, 1) for x in (e1, e2)))
     on_region = UpperBound("l", (a1 + a2) * delta1, eta_on_region, "‖η‖ ≤ (a1 + a2)δ1 on the region")
-    c = gamma * hh**nu * j_max * (a1 + a2) ** 2 * delta1**2
+    c = gamma * hh**nu * j_max * (a1 + a2) ** (sg - 1) * delta1 ** (sg - 1)
     return TermBound("γh^ν‖η‖^{σ−1}ωᵀJη", sign * c * (a1 * (w**2 + e1**2) + a2 * (w**2 + e2**2)) / 2,
-                     CauchySchwarz(omega(t), eta, (measured(W_), _eta_norm), matrix=J, factor=gamma * hh**nu * l**2,
-                                   operator_norm=_j_norm), then=(on_region, young))
+                     CauchySchwarz(omega(t), eta, (measured(W_), _eta_norm), matrix=J,
+                                   factor=gamma * hh**nu * l ** (sg - 1), operator_norm=_j_norm),
+                     then=(on_region, young))
 
 
-def _bounds(which):
+def _bounds(which, sg=3):
     """The term bounds of V ≥ L (``"min"``) or V ≤ U (``"max"``) of (16)."""
     jj = j_min if which == "min" else j_max
     return [
@@ -159,101 +265,146 @@ def _bounds(which):
                   Rayleigh(omega(t), J, factor=sympy.Rational(1, 2), eigenvalue=_eig("J", which), norm_squared=w**2)),
         TermBound("(a1/2)‖s1−r1‖²", a1 / 2 * e1**2, Equal(a1 / 2 * e1**2)),
         TermBound("(a2/2)‖s2−r2‖²", a2 / 2 * e2**2, Equal(a2 / 2 * e2**2)),
-        _cross_term(-1 if which == "min" else 1),
+        _cross_term(-1 if which == "min" else 1, sg),
     ]
 
 
-def _vdot_bounds():
-    """V̇ ≤ W term by term on the structured V̇ of :mod:`.theorem2_functional` (five of its seven terms)."""
-    E = a1 * e1 + a2 * e2
-    tree = UpperBound("l", E, eta_tree, "‖η‖ ≤ a1‖s1−r1‖ + a2‖s2−r2‖")
-    young_we = YoungEach(tuple((hh ** (nu / 2) * w**2, hh ** (nu / 2) * m, 2, 2, eta_w)
-                               for m in (e1**2, e2**2, e1 * e2)))
-    young_ee = YoungEach(((hh ** (nu / 2) * e1**2, hh ** (nu / 2) * e2**2, 2, 2, 1),))
+def _damping(m):
+    """−(μ+1)hW = −(μ+1)h(ωᵀDω)^k ≤ −(μ+1)λ_min(D)^k h w^{μ+1}, k = (μ+1)/2: a Rayleigh quotient, then q ≥ λ_min w².
 
-    def quartic(c):  # c·h^ν w²(a1e1 + a2e2)² after both Young steps
-        return c * hh**nu * ((a1 + a2) ** 2 * eta_w * w**4 + (a1 + a2) * (a1 * e1**4 + a2 * e2**4) / eta_w) / 2
+    Only even powers of q = |ωᵀDω| go into a rule's factor (q^{2i} = (ωᵀDω)^{2i} exactly): for k even the
+    quotient is [q]ᵀ[q]·q^{k−2}, for k odd it is ωᵀDω·q^{k−1}.
+    """
+    k = (m + 1) / 2
+    if k % 2 == 0:
+        rule = Rayleigh(sympy.Matrix([quad(omega(t), D)]), sympy.eye(1), factor=-(m + 1) * hh * q ** (k - 2),
+                        eigenvalue=1, norm_squared=q**2)
+    else:
+        rule = Rayleigh(omega(t), D, factor=-(m + 1) * hh * q ** (k - 1), eigenvalue=d_min, norm_squared=w**2)
+    return TermBound("−(μ+1)hW", -(m + 1) * d_min**k * hh * w ** (m + 1), rule,
+                     then=(LowerBound("q", d_min * w**2, q_lower, "ωᵀDω ≥ λ_min(D)‖ω‖²"),))
 
-    young_we1 = YoungEach(tuple((hh ** ((nu + 1) / 2) * w**2, hh ** ((nu + 1) / 2) * m, 2, 2, eta_w)
-                                for m in (e1**2, e2**2, e1 * e2)))
-    young_ee1 = YoungEach(((hh ** ((nu + 1) / 2) * e1**2, hh ** ((nu + 1) / 2) * e2**2, 2, 2, 1),))
-    quartic1 = lambda c: quartic(c) * hh  # noqa: E731  the same with h^{ν+1}
-    cubes = (e1**3, e1**2 * e2, e1 * e2**2, e2**3)
-    young_h = YoungEach(tuple((hh ** sympy.Rational(1, 4) * w, hh ** (3 * nu / 4) * m, 4, sympy.Rational(4, 3), eta_h)
-                              for m in cubes))
-    young_h2 = YoungEach(((hh ** (2 * nu / 3) * e1 ** sympy.Rational(8, 3), hh ** (nu / 3) * e2 ** sympy.Rational(4, 3),
-                           sympy.Rational(3, 2), 3, 1),
-                          (hh ** (2 * nu / 3) * e2 ** sympy.Rational(8, 3), hh ** (nu / 3) * e1 ** sympy.Rational(4, 3),
-                           sympy.Rational(3, 2), 3, 1)))
+
+def _hdot_term(m, sg, tree):
+    """γνh^{ν−1}ḣ‖η‖^{σ−1}ωᵀJη: Cauchy–Schwarz, (15) with μ, the tree l ≤ a1e1 + a2e2, :func:`hdot_young`."""
+    s, A = sympy.Integer(sg), a1 + a2
+    fifteen = UpperBound("hw", L15 * hh ** (1 + (1 - nu) / (m + 1)) * w, _condition15_rule(int(m)),
+                         "(15): |ḣ|‖ω‖ ≤ L h^(1+(1−ν)/(μ+1))‖ω‖")
+    bound = gamma * nu * j_max * L15 * (eta_h * A**s * hh * w ** (s + 1) / (s + 1)
+                                        + s / (s + 1) * eta_h ** (-1 / s) * A ** (s - 1) * hh**nu
+                                        * (a1 * e1 ** (s + 1) + a2 * e2 ** (s + 1)))
+    return TermBound("γνh^{ν−1}ḣ‖η‖^{σ−1}ωᵀJη", bound,
+                     CauchySchwarz(h(t).diff(t) * omega(t), eta, (measured(HW), _eta_norm), matrix=J,
+                                   factor=gamma * nu * hh ** (nu - 1) * l ** (sg - 1), operator_norm=_j_norm),
+                     then=(fifteen, tree, *hdot_young(sg)))
+
+
+def _grad_term(m, sg, tree, region):
+    """−γh^{ν+1}‖η‖^{σ−1}(grad W)ᵀη, grad W = (μ+1)q^j Dω with j = (μ−1)/2 (q^{2i} in the factor, as in :func:`_damping`).
+
+    j odd: Cauchy–Schwarz on ωᵀDω and on (Dω)ᵀη (a product); j even: on (Dω)ᵀη; then q ≤ λ_max(D)w² (j > 1),
+    ‖η‖^{σ−1} ≤ (a1+a2)δ1·(a1e1 + a2e2)^{σ−2}, w^μ ≤ δ_ω^{μ−2}w² on the region and :func:`mixed_young` (h^{ν+1}).
+    """
+    j = (m - 1) / 2
+    dw = CauchySchwarz(D * omega(t), eta, (mapped(D, measured(W_), _d_norm), _eta_norm))
+    base = -(m + 1) * gamma * hh ** (nu + 1) * l ** (sg - 2) * l2
+    if j % 2 == 1:
+        rule = ProductCS(CauchySchwarz(omega(t), omega(t), (measured(W_), measured(W_)), matrix=D, operator_norm=_d_norm),
+                         dw, factor=base * q ** (j - 1))
+    else:
+        rule = CauchySchwarz(D * omega(t), eta, (mapped(D, measured(W_), _d_norm), _eta_norm), factor=base * q**j)
+    upper_q = (UpperBound("q", d_max * w**2, q_upper, "|ωᵀDω| ≤ λ_max(D)‖ω‖²"),) if j > 1 else ()
+    c = (m + 1) * gamma * d_max ** ((m + 1) / 2) * (a1 + a2) * delta1 * delta_w ** (m - 2)
+    return TermBound("−γh^{ν+1}‖η‖^{σ−1}(grad W)ᵀη", _mixed(c, sg, shift=1), rule,
+                     then=(*upper_q, region, tree, OnRegion("w", 2), *mixed_young(sg, 1)))
+
+
+def _vdot_bounds(m=3, sg=3):
+    """V̇ ≤ W term by term on the structured V̇ of :mod:`.theorem2_functional` (its seven terms), μ = m, σ = sg."""
+    tree = UpperBound("l", a1 * e1 + a2 * e2, eta_tree, "‖η‖ ≤ a1‖s1−r1‖ + a2‖s2−r2‖")
+    young = mixed_young(sg)
+    k = (sympy.Integer(sg) + 1) / 2
     six = LowerBound("l", sympy.sqrt(eps * (a1**2 * e1**2 + a2**2 * e2**2)), lemma6,
                      "(6): ‖η‖² ≥ ε(a1²‖s1−r1‖² + a2²‖s2−r2‖²)")
-    fifteen = UpperBound("hw", L15 * hh ** (1 + (1 - nu) / (mu + 1)) * w, condition15,
-                         "(15): |ḣ|‖ω‖ ≤ L h^(1+(1−ν)/(μ+1))‖ω‖")
     region = UpperBound("l2", (a1 + a2) * delta1, eta_on_region, "‖η‖ ≤ (a1 + a2)δ1 on the region")
-    S = {term.text: term for term in structured}
+    more = (tree,) if sg > 3 else ()  # ‖η‖^{σ−3} in the ηᵀM-term
     return [
-        TermBound(S["−(μ+1)hW"].text, -4 * d_min**2 * hh * w**4,
-                  Rayleigh(sympy.Matrix([quad(omega(t), D)]), sympy.eye(1), factor=-(mu + 1) * hh, eigenvalue=1,
-                           norm_squared=q**2),
-                  then=(LowerBound("q", d_min * w**2, q_lower, "ωᵀDω ≥ λ_min(D)‖ω‖²"),)),
-        TermBound("γνh^{ν−1}ḣ‖η‖^{σ−1}ωᵀJη",
-                  gamma * nu * j_max * L15 * (eta_h * (a1 + a2) ** 3 * hh * w**4 / 4
-                                              + 3 * eta_h ** sympy.Rational(-1, 3) * (a1 + a2) ** 2 * hh**nu
-                                              * (a1 * e1**4 + a2 * e2**4) / 4),
-                  CauchySchwarz(h(t).diff(t) * omega(t), eta, (measured(HW), _eta_norm), matrix=J,
-                                factor=gamma * nu * hh ** (nu - 1) * l**2, operator_norm=_j_norm),
-                  then=(fifteen, tree, young_h, young_h2)),
-        TermBound("−γ(σ−1)h^ν‖η‖^{σ−3}(ηᵀM)(ωᵀJη)", quartic(2 * gamma * j_max * (a1 + a2)),
+        _damping(m),
+        _hdot_term(m, sg, tree),
+        TermBound("−γ(σ−1)h^ν‖η‖^{σ−3}(ηᵀM)(ωᵀJη)", _mixed((sg - 1) * gamma * j_max * (a1 + a2), sg),
                   ProductCS(CauchySchwarz(eta, _M, (_eta_norm, _M_norm)),
                             CauchySchwarz(omega(t), eta, (measured(W_), _eta_norm), matrix=J, operator_norm=_j_norm),
-                            factor=-(sigma - 1) * gamma * hh**nu),
-                  then=(young_we, young_ee)),
-        TermBound("−γh^ν‖η‖^{σ−1}(ω×Jω)ᵀη", quartic(gamma * j_max * (a1 + a2) * delta1),
+                            factor=-(sg - 1) * gamma * hh**nu * l ** (sg - 3)),
+                  then=(*more, *young)),
+        TermBound("−γh^ν‖η‖^{σ−1}(ω×Jω)ᵀη", _mixed(gamma * j_max * (a1 + a2) * delta1, sg),
                   CauchySchwarz(omega(t).cross(J * omega(t)), eta, (crossed(measured(W_), _Jw), _eta_norm),
-                                factor=-gamma * hh**nu * l * l2),
-                  then=(region, tree, young_we, young_ee)),
-        TermBound("−γh^{ν+1}‖η‖^{σ−1}(grad W)ᵀη", quartic1(4 * gamma * d_max**2 * (a1 + a2) * delta1 * delta_w),
-                  ProductCS(CauchySchwarz(omega(t), omega(t), (measured(W_), measured(W_)), matrix=D,
-                                          operator_norm=_d_norm),
-                            CauchySchwarz(D * omega(t), eta, (mapped(D, measured(W_), _d_norm), _eta_norm)),
-                            factor=-(mu + 1) * gamma * hh ** (nu + 1) * l * l2),
-                  then=(region, tree, OnRegion("w", 2), young_we1, young_ee1)),
-        TermBound("−γh^ν‖η‖^{σ+1}", -gamma * eps**2 * hh**nu * (a1**2 * e1**2 + a2**2 * e2**2) ** 2,
-                  Rayleigh(eta, sympy.eye(3), factor=-gamma * hh**nu * l**2, eigenvalue=1, norm_squared=l**2),
+                                factor=-gamma * hh**nu * l ** (sg - 2) * l2),
+                  then=(region, tree, *young)),
+        _grad_term(m, sg, tree, region),
+        TermBound("−γh^ν‖η‖^{σ+1}", -gamma * eps**k * hh**nu * (a1**2 * e1**2 + a2**2 * e2**2) ** k,
+                  Rayleigh(eta, sympy.eye(3), factor=-gamma * hh**nu * l ** (sg - 1), eigenvalue=1, norm_squared=l**2),
                   then=(six,)),
-        TermBound("−γh^ν‖η‖^{σ−1}ωᵀJM", quartic(gamma * j_max * (a1 + a2)),
-                  CauchySchwarz(omega(t), _M, (measured(W_), _M_norm), matrix=J, factor=-gamma * hh**nu * l**2,
+        TermBound("−γh^ν‖η‖^{σ−1}ωᵀJM", _mixed(gamma * j_max * (a1 + a2), sg),
+                  CauchySchwarz(omega(t), _M, (measured(W_), _M_norm), matrix=J, factor=-gamma * hh**nu * l ** (sg - 1),
                                 operator_norm=_j_norm),
-                  then=(tree, young_we, young_ee)),
+                  then=(tree, *young)),
     ]
 
 
-def chain_steps():
-    """(V ≥ L, V ≤ U, V̇ ≤ W) of the proof of Theorem 2 on :data:`REGION`."""
-    return lyapunov_steps(functional2, system4, _bounds("min"), _bounds("max"), _vdot_bounds(), MEASURES,
-                          region=REGION, definitions=DEFINITIONS, derivation=derivation2, witness_time=1)
+def chain_steps(mu_value=3, sigma_value=None):
+    """(V ≥ L, V ≤ U, V̇ ≤ W) of the proof of Theorem 2 on :data:`REGION` for W of order μ + 1 and ‖η‖^{σ−1} in V.
+
+    μ, σ odd integers ≥ 3 (σ = μ unless given).  The splits are derived for σ = μ; with σ ≠ μ the steps are
+    built all the same (V's terms with σ, the damping with μ) and the checks say where the chain breaks.
+
+    Examples
+    --------
+    >>> [s.role for s in chain_steps(5)]
+    ['lower', 'upper', 'vdot']
+    """
+    inst = instance(mu_value, sigma_value)
+    m, sg = inst.mu, inst.sigma
+    return lyapunov_steps(inst.functional, inst.system, _bounds("min", sg), _bounds("max", sg), _vdot_bounds(m, sg),
+                          MEASURES, region=REGION, definitions=_definitions(int(m)), derivation=inst.derivation,
+                          witness_time=1)
 
 
 steps = chain_steps()
+
+
+def conclusion(sigma_value=3) -> TimeVaryingRate:
+    """V̇ ≤ −α8 h^ν V^λ, λ = (σ+1)/2, on the region for 0 < h ≤ sup h, the algebraic envelope; (11) decided.
+
+    Examples
+    --------
+    >>> conclusion(5).lam
+    3
+    """
+    return TimeVaryingRate(("w", "e1", "e2"), "hh", nu, alpha8, conditions=condition11,
+                           lam=(sympy.Integer(sigma_value) + 1) / 2)
+
 
 #: V̇ ≤ −α8 h^ν V^λ on the region for 0 < h ≤ sup h, the algebraic envelope; (11) makes it tend to 0
 CONCLUSION = TimeVaryingRate(("w", "e1", "e2"), "hh", nu, alpha8, conditions=condition11, lam=LAMBDA)
 
 
-def find_choices(values, box=None) -> dict:
+def find_choices(values, box=None, *, mu=3, sigma=None) -> dict:
     """γ, ε, δ1, δ_ω, η_w, η_h, α8 at the run's values (exact strings), in closed form (no optimisation).
 
-    ε = δ1 = δ_ω = 1/2 unless given; H = sup_{t≥0} h exactly, L of (15) exact.  The e_i⁴-terms of W:
-    −γε²a_i⁴h^ν from Lemma 1 against γ·(¾νjLη_h^{−1/3}(a1+a2)²a_i + K(a1+a2)a_i/(2η_w))h^ν with
-    K = j(a1+a2)(3 + δ1) + 4d_max²(a1+a2)δ1δ_ω H (the ηᵀM-, ω×Jω-, M- and grad W-terms): η_h and η_w give
-    each a quarter of ε²a_min⁴ (γ cancels).  The w⁴-terms: γ(νjLη_h(a1+a2)³/4 + K(a1+a2)²η_w H^{ν−1}/2) ≤
-    2d_min² (half of −4d_min²h), and γ at most the (16) choice.  Then W ≤ −2d_min²h w⁴ − (γε²a_min⁴/2)h^ν e_i⁴
-    and α8 is 9/10 of min(2d_min²H^{1−ν}, γε²a_min⁴/2)/(3ū²) (U² ≤ 3Σū_k²x_k⁴, ū the sups of U's
-    coefficients), rounded down.  Floating point only picks the numbers: every step is proved at them.
+    For W of order μ + 1 and ‖η‖^{σ−1} in V (σ = μ unless given; k_μ = (μ+1)/2, λ = (σ+1)/2):
+    ε = δ1 = δ_ω = 1/2 unless given; H = sup_{t≥0} h exactly, L of (15) exact.  The e_i^{σ+1}-terms of W:
+    −γε^λ a_i^{σ+1}h^ν from Lemma 1 against γ·(νjL·σ/(σ+1)·η_h^{−1/σ}A^{σ−1}a_i + K(σ−1)/(σ+1)·η_w^{−2/(σ−1)}
+    A^{σ−2}a_i)h^ν, A = a1 + a2, K = jA(σ + δ1) + (μ+1)d_max^{k_μ}Aδ1δ_ω^{μ−2}H (the ηᵀM-, ω×Jω-, M- and
+    grad W-terms): η_h and η_w give each a quarter of ε^λ a_min^{σ+1} (γ cancels).  The w^{σ+1}-terms:
+    γ(νjLη_hA^σ/(σ+1) + 2Kη_wA^{σ−1}H^{ν−1}/(σ+1)) ≤ (μ+1)d_min^{k_μ}/2 (half of the damping), and γ at
+    most the (16) choice.  Then W ≤ −((μ+1)/2)d_min^{k_μ}h w^{μ+1} − (γε^λa_min^{σ+1}/2)h^ν e_i^{σ+1} and α8
+    is 9/10 of min(((μ+1)/2)d_min^{k_μ}H^{1−ν}/ū_w^λ, γε^λa_min^{σ+1}/(2ū_e^λ))/3^{λ−1} (U^λ ≤ 3^{λ−1}Σū_k^λx_k^{2λ},
+    ū the sups of U's coefficients), rounded down.  Floating point only picks the numbers: every step is
+    proved at them.  (μ = σ = 3: the catalogued item.)
 
     With ``box`` (name → (lo, hi), from a run over a box) the boxed a1, a2 enter at their worst ends for
     each use, as the chain's coefficients enclosed over the box see them: a_min the smallest lower end
-    (the −γε²a_i⁴ margins), a_max and a1 + a2 the largest upper ends (every positive coefficient); ε, δ1,
+    (the −γε^λ margins), a_max and a1 + a2 the largest upper ends (every positive coefficient); ε, δ1,
     δ_ω boxed are taken at their lower, upper, upper ends.  Other boxed names do not change the recipe.
 
     Examples
@@ -269,22 +420,28 @@ def find_choices(values, box=None) -> dict:
             return box[k][end]
         return sympy.Rational(values[k]) if values.get(k) is not None else sympy.Rational(d)
 
+    m, s = int(mu), int(mu if sigma is None else sigma)
+    km, lam = (m + 1) / 2, (s + 1) / 2
     eps_, d1, dw = r("eps", "1/2"), r("delta1", "1/2", 1), r("delta_w", "1/2", 1)
     H, _ = sup_in_t(_h_of(values))
     H = float(H) if H is not None and H.is_number and H.is_finite else 1.0
     nu_ = float(values["nu"])
-    L = float(_L15(values)) if _L15(values).is_number else 1.0  # (15) fails or undecided: the step says so
-    jmin, jmax, dmin, dmax = (float(_eig(m, k)(values)) for m in ("J", "D") for k in ("min", "max"))
+    L = float(_L15(values, m)) if _L15(values, m).is_number else 1.0  # (15) fails or undecided: the step says so
+    jmin, jmax, dmin, dmax = (float(_eig(M_, k)(values)) for M_ in ("J", "D") for k in ("min", "max"))
     ends = [box.get(k, (values[k], values[k])) for k in ("a1", "a2")]
     a_lo, a_hi = min(float(lo) for lo, _ in ends), max(float(hi) for _, hi in ends)
-    a, e2_ = sum(float(hi) for _, hi in ends), float(eps_) ** 2
-    K = jmax * a * (3 + float(d1)) + 4 * dmax**2 * a * float(d1) * float(dw) * H
-    et_h = _rational((3 * nu_ * jmax * L * a**2 * a_hi / (e2_ * a_lo**4)) ** 3, up=True)
-    et_w = _rational(2 * K * a * a_hi / (e2_ * a_lo**4), up=True)
-    per_gamma = nu_ * jmax * L * float(et_h) * a**3 / 4 + K * a**2 * float(et_w) * H ** (nu_ - 1) / 2
-    c16 = jmax * a**2 * float(d1) ** 2 * H**nu_
-    g = _rational(min(2 * dmin**2 / per_gamma, 0.5 * min(jmin / (c16 * a), 1 / c16)))
+    a, e_k = sum(float(hi) for _, hi in ends), float(eps_) ** lam
+    margin = e_k * a_lo ** (s + 1)  # ε^λ a_min^{σ+1}
+    K = jmax * a * (s + float(d1)) + (m + 1) * dmax**km * a * float(d1) * float(dw) ** (m - 2) * H
+    et_h = _rational((4 * s * nu_ * jmax * L * a ** (s - 1) * a_hi / ((s + 1) * margin)) ** s, up=True)
+    et_w = _rational((4 * (s - 1) * K * a ** (s - 2) * a_hi / ((s + 1) * margin)) ** ((s - 1) / 2), up=True)
+    per_gamma = (nu_ * jmax * L * float(et_h) * a**s / (s + 1)
+                 + 2 * K * a ** (s - 1) * float(et_w) * H ** (nu_ - 1) / (s + 1))
+    c16 = jmax * a ** (s - 1) * float(d1) ** (s - 1) * H**nu_
+    damping = (m + 1) / 2 * dmin**km  # half of the damping's (μ+1)d_min^{k_μ}
+    g = _rational(min(damping / per_gamma, 0.5 * min(jmin / (c16 * a), 1 / c16)))
     u_w, u_e = jmax / 2 + float(g) * c16 * a / 2, a_hi / 2 * (1 + float(g) * c16)
-    alpha = _rational(0.9 * min(2 * dmin**2 * H ** (1 - nu_) / (3 * u_w**2), float(g) * e2_ * a_lo**4 / (6 * u_e**2)))
+    alpha = _rational(0.9 * min(damping * H ** (1 - nu_) / u_w**lam, float(g) * margin / (2 * u_e**lam))
+                      / 3 ** (lam - 1))
     return {"gamma": str(g), "eps": str(eps_), "delta1": str(d1), "delta_w": str(dw), "eta_w": str(et_w),
             "eta_h2": str(et_h), "alpha8": str(alpha)}

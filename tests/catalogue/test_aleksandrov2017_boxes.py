@@ -3,7 +3,8 @@
 The Lemma 6 certificate (:func:`lkverify.proofs.aleksandrov2017.theorem1_chain.lemma6`) takes the boxed
 ε, a1, a2 into its box, so V̇ ≤ W closes over a box; :func:`...theorem2_chain.find_choices` picks the
 choices at the box's worst ends.  μ = σ = 3 is fixed in the system and the chain (not a parameter): the
-V̇ identity is exact for every μ = σ (slow test), the other links only at μ = σ = 3.
+V̇ identity is exact for every μ = σ (slow test), the other links per exponent (μ = σ = 3 here; 5 and 7 in
+tests/catalogue/test_aleksandrov2017_theorem2_exponents.py).
 """
 
 import pytest
