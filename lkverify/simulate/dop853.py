@@ -151,7 +151,8 @@ def run_batch(rhs, win, P, Y0, x0, lags, wk, targets, counts, t0, t_eval, rtol, 
         K = np.empty((16, n))
         y, yn, yt = np.empty(n), np.empty(n), np.empty(n)
         g, gsum, xs = np.empty(max(nw, 1)), np.empty(max(nw, 1)), np.empty(max(ns, 1))
-        gx0 = np.zeros(max(nw, 1))
+        gx0 = np.empty(max(nw, 1))
+        gx0[0] = 0.0
         for i in range(ns):
             xs[i] = x0[i]
         if nw:
@@ -180,7 +181,9 @@ def run_batch(rhs, win, P, Y0, x0, lags, wk, targets, counts, t0, t_eval, rtol, 
             if H0[pt] < 0.0:                     # f(t0, y0) not finite
                 outcome = _DIVERGED
             scale = max(1.0, math.sqrt(yy))
-            recent = np.zeros(_WINDOW)
+            recent = np.empty(_WINDOW)
+            for i in range(_WINDOW):
+                recent[i] = 0.0
             recent_sum = 0.0
             bad = False
         refresh = False        # K[0] to re-evaluate at the step's start (a re-synchronised state)
@@ -416,7 +419,7 @@ def run_batch(rhs, win, P, Y0, x0, lags, wk, targets, counts, t0, t_eval, rtol, 
                 if it == n_targets:
                     outcome = _SUCCESS
                     break
-                h_abs = min(h_next, hmax, targets[pt, it] - t)
+                h_abs = min(min(h_next, hmax), targets[pt, it] - t)
             if n_steps >= _WINDOW and recent_sum / _WINDOW < floor:
                 outcome = _DIVERGED if math.sqrt(yy) > _GROWTH * scale else _COLLAPSE
                 break
