@@ -34,7 +34,7 @@ import numpy as np
 
 from ..errors import InputError, UnsupportedInput
 from .control import StepControl
-from .events import DISCONTINUITY_ORDER, FLOOR_WINDOW, breakpoints
+from .events import DISCONTINUITY_ORDER, FLOOR_WINDOW, MAX_STEPS, breakpoints
 from .history import DenseHistory
 from .solver import DDESolution, Outcome
 
@@ -89,8 +89,19 @@ class _Kernel:
         self.n = fam.n
         self.store = _FIRST_STORE
 
-    def call(self, limit: int):
+    def prepare(self) -> None:
+        """The compiled functions, the windows and the first step (once per run, whatever the calls)."""
         from .batch import first_steps          # numba: imported when a run starts
+
+        rhs = self.fam.functions()[0]
+        self.windows = np.array(self.fam.windows, dtype=np.int64).reshape(-1, 2)
+        self.first = first_steps(rhs, self.p.reshape(1, -1), self.y0.reshape(1, -1), self.x0.reshape(1, -1),
+                                 self.lags.shape[1], self.targets[:, 0] - self.t0, self.t0, self.rtol, self.atol)
+        if self.first[0] < 0:
+            raise InputError(f"the right-hand side is not finite at t0={self.t0:g}; expected finite values at the "
+                             f"initial state; check coefficients and the history at t0")
+
+    def call(self, limit: int):
         from .dop853 import run_batch
 
         fam, n = self.fam, self.n
@@ -101,12 +112,7 @@ class _Kernel:
         stats = np.zeros((1, 4), dtype=np.int64)
         store_t, store_c = np.zeros(self.store + 1), np.zeros((self.store, 8, n))
         store_t[0] = self.t0
-        windows = np.array(fam.windows, dtype=np.int64).reshape(-1, 2)
-        first = first_steps(rhs, self.p.reshape(1, -1), self.y0.reshape(1, -1), self.x0.reshape(1, -1),
-                            self.lags.shape[1], self.targets[:, 0] - self.t0, self.t0, self.rtol, self.atol)
-        if first[0] < 0:
-            raise InputError(f"the right-hand side is not finite at t0={self.t0:g}; expected finite values at the "
-                             f"initial state; check coefficients and the history at t0")
+        windows, first = self.windows, self.first
         run_batch(rhs, win, self.p.reshape(1, -1), self.y0.reshape(1, -1), np.ascontiguousarray(self.x0), self.lags,
                   windows, self.targets, np.array([self.targets.shape[1]], dtype=np.int64), self.t0, te,
                   self.rtol, self.atol, float(self.hcap), self.bound, int(limit), self.floor,
@@ -115,18 +121,19 @@ class _Kernel:
         return int(code[0]), float(t_fail[0]), stats[0].copy(), store_t, store_c
 
     def until_done(self, deadline) -> None:
-        limit = _FIRST_LIMIT if deadline is not None else 10**7
+        limit = _FIRST_LIMIT if deadline is not None else MAX_STEPS
         if deadline is not None and deadline.expired:   # spent before the run: one step, as the SciPy path takes
             limit = 1
         self.fam.functions()                       # compiled once per process, before the clock starts
         start = time.monotonic()
+        self.prepare()
         while True:
             code, t_fail, stats, store_t, store_c = self.call(limit)
             if stats[3] < 0:                       # the store was too small: four times larger, again
                 self.store *= 4
                 continue
-            budget = code == _code(Outcome.BUDGET) and stats[0] >= limit
-            if budget and limit < 10**7 and not (deadline is not None and deadline.expired):
+            budget = code == list(Outcome).index(Outcome.BUDGET) and stats[0] >= limit
+            if budget and limit < MAX_STEPS and not (deadline is not None and deadline.expired):
                 limit *= 4
                 continue
             break
@@ -135,7 +142,7 @@ class _Kernel:
 
     def solution(self, t_eval, monitors, deadline, breaks) -> DDESolution:
         code, t_fail, stats, tb, C = self.result
-        outcome = Outcome(list(Outcome)[code])
+        outcome = list(Outcome)[code]
         m = int(stats[3])
         past = DenseHistory.from_dop853(self.y0, self.t0, tb, C, float(self.lags.min()) if self.lags.size else 1.0)
         Y = past._Y
@@ -182,7 +189,3 @@ class _Kernel:
             return (f"the right-hand side returned non-finite values; the step size collapsed while retrying from "
                     f"t={t_fail:.10g}")
         return f"DOP853 failed at t={t_fail:.10g}: Required step size is less than spacing between numbers."
-
-
-def _code(outcome: Outcome) -> int:
-    return list(Outcome).index(outcome)
