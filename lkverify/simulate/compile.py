@@ -447,11 +447,18 @@ def _exact_lags(rhs, aux, funcs, keep=frozenset()) -> tuple:
     With ``keep`` (a family's grid symbols) a lag may be an expression in them; expressions
     sort after numbers and are distinct unless they simplify to the same expression.
     """
-    found = []
+    found, seen = [], set()
+    bound = {v for e in rhs + [a.g for a in aux] for I in e.atoms(sympy.Integral) for v in I.variables}
+    bound |= {a.var for a in aux}
     for e in rhs + [a.g for a in aux]:
         for a in e.atoms(AppliedUndef):
-            if a.func in funcs and a.args[0] != t:
-                c = sympy.simplify(t - a.args[0])
+            if a.func in funcs and a.args[0] != t and a.args[0] not in seen:
+                seen.add(a.args[0])
+                if a.args[0].free_symbols & bound:
+                    continue  # in an integration variable: inside an integral, handled there
+                c = sympy.expand(t - a.args[0])
+                if t in c.free_symbols:   # simplify (slow) only where expanding did not cancel t
+                    c = sympy.simplify(c)
                 if t in c.free_symbols:
                     continue  # inside an integral, handled there
                 if not c.free_symbols or not c.free_symbols <= set(keep):

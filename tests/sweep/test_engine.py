@@ -91,6 +91,27 @@ def test_two_worker_local_cluster_equals_serial(serial, tmp_path):
     assert columns(par.table, names) == columns(serial.table, names)
 
 
+@pytest.mark.slow
+@pytest.mark.parametrize("method", ["fork", "spawn"])
+def test_forked_and_spawned_workers_give_the_serial_table(serial, tmp_path, monkeypatch, method):
+    """A local cluster's workers forked (Linux default: they inherit the imports) or spawned: the same table."""
+    monkeypatch.setenv("LKVERIFY_START_METHOD", method)
+    assert cluster_module._start_method() == method
+    par = sweep(toy(), grid=["a=0.25:2.5:10"], out=tmp_path / f"{method}.parquet",
+                options=SweepOptions(workers=2, chunk_size=3))
+    names = [n for n in serial.table.column_names]
+    assert par.complete and "cluster start" in par.timings
+    assert columns(par.table, names) == columns(serial.table, names)
+
+
+def test_the_start_method_is_fork_on_linux_and_a_bad_one_is_refused(monkeypatch):
+    monkeypatch.delenv("LKVERIFY_START_METHOD", raising=False)
+    assert cluster_module._start_method() == ("fork" if sys.platform.startswith("linux") else "spawn")
+    monkeypatch.setenv("LKVERIFY_START_METHOD", "threads")
+    with pytest.raises(InputError, match="LKVERIFY_START_METHOD: expected fork, spawn or forkserver, got 'threads'"):
+        cluster_module._start_method()
+
+
 def test_a_small_sweep_runs_in_process_without_a_cluster(serial, tmp_path, monkeypatch):
     """No Dask cluster for a sweep under IN_PROCESS_POINTS points (issue 27), unless a scheduler or workers are given."""
     def no_cluster(options):

@@ -17,11 +17,16 @@ from sympy.core.function import AppliedUndef
 from ...declare.functional import outer_integrals
 from ...declare.symbols import t
 from ...errors import InputError
+from ...memo import Memo
 from ..intervals.convert import enclose
 from .measures import Measure
 from .witness_charts import (_DENOMINATOR, _PREC, _TimeChart, UnsupportedClaim, _lt, _plane_rotation, _rotation_np,
                              _unit)
 from .witness_problem import _U, MEMORY, _Integral, _Problem, _Slot, _evaluated, _newton_cotes, _short
+
+#: integrand, variable, time → (atom → dummy, σ, antiderivative G) or None: SymPy's integrate is deterministic,
+#: so a result is reused across claims (the dummies are private to the entry and substituted at every use)
+_ANTIDERIVATIVES = Memo(512)
 
 __all__: list = []  # internal: lkverify.certify.steps.witnesses (the search) re-exports _Model
 
@@ -181,6 +186,11 @@ class _Model:
         states (cached on the problem), or None when SymPy finds none."""
         cache = self.problem.__dict__.setdefault("_antiderivatives", {})
         if I.node not in cache:
+            # the same integrand recurs in every step of a chain (and every grid): SymPy's integrate once per process
+            key = (I.inner, I.var, self.problem.time)
+            if key in _ANTIDERIVATIVES:
+                cache[I.node] = _ANTIDERIVATIVES[key]
+                return cache[I.node]
             dummies = {a: sympy.Dummy(real=True) for a in I.inner.atoms(AppliedUndef)}
             sigma = sympy.Dummy("sigma")
             F = _evaluated(I.inner.xreplace(dummies))
@@ -191,6 +201,7 @@ class _Model:
             except RecursionError:  # SymPy's meijerint on an unusual integrand: summed piece by piece instead
                 g = sympy.Integral(F, sigma)
             cache[I.node] = None if g.has(sympy.Integral) or g.has(sympy.Piecewise) else (dummies, sigma, g)
+            _ANTIDERIVATIVES[key] = cache[I.node]
         return cache[I.node]
 
     def _time_value(self):
