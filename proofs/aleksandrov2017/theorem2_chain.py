@@ -39,7 +39,9 @@ Other exponents.  Everything above is written for an odd μ = σ ≥ 3 and built
 the h^ν w²e-splits become ((σ+1)/2, (σ+1)/(σ−1)) and ((σ−1)/a, (σ−1)/(σ−1−a)) (:func:`mixed_young`), the
 extra ‖η‖^{σ−3} of the ηᵀM-term goes through the tree, w^μ ≤ δ_ω^{μ−2}w² in the grad W-term, and
 (ωᵀDω)^j enters a rule's factor only as an even power (|q|^{2i} = q^{2i} exactly; the odd rest is a
-Rayleigh or Cauchy–Schwarz form, :func:`_damping`, :func:`_grad_term`).  Items: :mod:`.theorem2_exponents`.
+Rayleigh or Cauchy–Schwarz form, :func:`_damping`, :func:`_grad_term`).  For σ > μ the ḣ-term is split with
+(μ+1, (μ+1)/μ) and its e-powers lowered on the region (:func:`hdot_young`, :func:`_hdot_term`), and half of
+the damping is raised to w^{σ+1} on the region (:func:`_damping`).  Items: :mod:`.theorem2_exponents`.
 """
 
 from __future__ import annotations
@@ -52,7 +54,7 @@ from lkverify import Status, quad, t
 from lkverify.certify.steps.chain import TermBound, lyapunov_steps
 from lkverify.certify.steps.measures import Region, norm_measure
 from lkverify.certify.matrices import matrix_positive_definite
-from lkverify.certify.steps.rewrites import LowerBound, OnRegion, YoungEach
+from lkverify.certify.steps.rewrites import LowerBound, OnRegion, RaiseOnRegion, YoungEach
 from lkverify.certify.steps.rules import (CauchySchwarz, Condition, Equal, ProductCS, Rayleigh, crossed, mapped, measured,
                                           resolve_norm)
 from lkverify.certify.steps.timevarying import TimeVaryingRate, UpperBound, sup_in_t
@@ -176,34 +178,39 @@ def q_upper(ctx) -> Condition:
                      else Status.CERTIFIED, "; ".join(r.detail for r in bad))
 
 
-# ---- the Young splits, derived by hand for σ = μ (the rules check each) ----------------------------
+# ---- the Young splits, derived by hand for σ ≥ μ (the rules check each) ----------------------------
 def _larger_first(one, two):
     """Two (x, p) factors of a Young pair, the one with the larger power of its e_i first (ties: e1 first)."""
     return (one, two) if one[2] >= two[2] else (two, one)
 
 
-def hdot_young(sg) -> tuple:
-    """The two Young steps of the ḣ-term: c·h^{(σν+1)/(σ+1)} w e1^a e2^{σ−a} into h w^{σ+1} and h^ν e_i^{σ+1}.
+def hdot_young(sg, mu_value=None) -> tuple:
+    """The two Young steps of the ḣ-term: c·h^{(μν+1)/(μ+1)} w e1^a e2^{σ−a} into h w^{μ+1} and h^ν e_i^{σ(μ+1)/μ}.
 
-    First, for each a = σ … 0, x = h^{1/(σ+1)}w, y = h^{σν/(σ+1)}e1^a e2^{σ−a} with (p, q) = (σ+1, (σ+1)/σ)
-    and weight η_h: xy ≤ η_h h w^{σ+1}/(σ+1) + σ/(σ+1)·η_h^{−1/σ} h^ν e1^{a(σ+1)/σ} e2^{(σ−a)(σ+1)/σ}; then
-    each mixed product (0 < a < σ) by (p, q) = (σ/a, σ/(σ−a)) with weight 1 into (a/σ)h^ν e1^{σ+1} +
-    ((σ−a)/σ)h^ν e2^{σ+1}.  The h-powers add up because (15) gives h^{ν−1}|ḣ| ≤ L h^{ν+(1−ν)/(μ+1)} and
-    ν + (1−ν)/(μ+1) = 1/(σ+1) + σν/(σ+1) exactly when σ = μ (or ν = 1).
+    First, for each a = σ … 0, x = h^{1/(μ+1)}w, y = h^{μν/(μ+1)}e1^a e2^{σ−a} with (p, q) = (μ+1, (μ+1)/μ)
+    and weight η_h: xy ≤ η_h h w^{μ+1}/(μ+1) + μ/(μ+1)·η_h^{−1/μ} h^ν e1^{a(μ+1)/μ} e2^{(σ−a)(μ+1)/μ}; then
+    each mixed product (0 < a < σ) by (p, q) = (σ/a, σ/(σ−a)) with weight 1 into (a/σ)h^ν e1^{σ(μ+1)/μ} +
+    ((σ−a)/σ)h^ν e2^{σ(μ+1)/μ}.  The h-powers add up for every ν: (15) gives h^{ν−1}|ḣ| ≤ L h^{ν+(1−ν)/(μ+1)}
+    and ν + (1−ν)/(μ+1) = 1/(μ+1) + μν/(μ+1).  For σ = μ (``mu_value`` None or σ) the powers are w^{σ+1} and
+    e_i^{σ+1}; for σ > μ the chain then lowers e_i^{σ(μ+1)/μ} ≤ δ1^{(σ−μ)/μ}e_i^{σ+1} on the region
+    (:class:`~lkverify.certify.steps.rewrites.OnRegion`) and the damping meets h w^{μ+1} itself (:func:`_damping`).
 
     Examples
     --------
     >>> first, second = hdot_young(5)
     >>> len(first.pairs), len(second.pairs), first.pairs[1][2:4]
     (6, 4, (6, 6/5))
+    >>> hdot_young(5, 3)[0].pairs[1][2:4]
+    (4, 4/3)
     """
     s = sympy.Integer(sg)
-    first = YoungEach(tuple((hh ** (1 / (s + 1)) * w, hh ** (s * nu / (s + 1)) * e1**a * e2 ** (s - a), s + 1,
-                             (s + 1) / s, eta_h) for a in range(sg, -1, -1)))
+    r = s if mu_value is None else sympy.Integer(mu_value)
+    first = YoungEach(tuple((hh ** (1 / (r + 1)) * w, hh ** (r * nu / (r + 1)) * e1**a * e2 ** (s - a), r + 1,
+                             (r + 1) / r, eta_h) for a in range(sg, -1, -1)))
     second = []
     for a in range(sg - 1, 0, -1):
-        (x, p, _), (y, qq, _) = _larger_first((hh ** (a * nu / s) * e1 ** (a * (s + 1) / s), s / a, a),
-                                              (hh ** ((s - a) * nu / s) * e2 ** ((s - a) * (s + 1) / s), s / (s - a),
+        (x, p, _), (y, qq, _) = _larger_first((hh ** (a * nu / s) * e1 ** (a * (r + 1) / r), s / a, a),
+                                              (hh ** ((s - a) * nu / s) * e2 ** ((s - a) * (r + 1) / r), s / (s - a),
                                                s - a))
         second.append((x, y, p, qq, 1))
     return first, YoungEach(tuple(second))
@@ -269,34 +276,45 @@ def _bounds(which, sg=3):
     ]
 
 
-def _damping(m):
+def _damping(m, sg=None):
     """−(μ+1)hW = −(μ+1)h(ωᵀDω)^k ≤ −(μ+1)λ_min(D)^k h w^{μ+1}, k = (μ+1)/2: a Rayleigh quotient, then q ≥ λ_min w².
 
     Only even powers of q = |ωᵀDω| go into a rule's factor (q^{2i} = (ωᵀDω)^{2i} exactly): for k even the
-    quotient is [q]ᵀ[q]·q^{k−2}, for k odd it is ωᵀDω·q^{k−1}.
+    quotient is [q]ᵀ[q]·q^{k−2}, for k odd it is ωᵀDω·q^{k−1}.  For σ > μ the power is then raised on the
+    region w ≤ δ_ω on half of the term (:class:`~lkverify.certify.steps.rewrites.RaiseOnRegion`, the factor
+    ≤ 0): −w^{μ+1} ≤ −½w^{μ+1} − ½δ_ω^{μ−σ}w^{σ+1}, so the damping meets both the ḣ-term's h w^{μ+1} and the
+    h^ν w^{σ+1} of the other Young splits (the paper's step "if σ ≥ μ").
     """
     k = (m + 1) / 2
+    sg = m if sg is None else sg
     if k % 2 == 0:
         rule = Rayleigh(sympy.Matrix([quad(omega(t), D)]), sympy.eye(1), factor=-(m + 1) * hh * q ** (k - 2),
                         eigenvalue=1, norm_squared=q**2)
     else:
         rule = Rayleigh(omega(t), D, factor=-(m + 1) * hh * q ** (k - 1), eigenvalue=d_min, norm_squared=w**2)
-    return TermBound("−(μ+1)hW", -(m + 1) * d_min**k * hh * w ** (m + 1), rule,
-                     then=(LowerBound("q", d_min * w**2, q_lower, "ωᵀDω ≥ λ_min(D)‖ω‖²"),))
+    then = (LowerBound("q", d_min * w**2, q_lower, "ωᵀDω ≥ λ_min(D)‖ω‖²"),)
+    if sg > m:  # half kept (it meets the ḣ-term's h w^{μ+1}), half raised to w^{σ+1}
+        half = sympy.Rational(1, 2)
+        raised = -(m + 1) * d_min**k * hh * half * (w ** (m + 1) + delta_w ** (m - sg) * w ** (sg + 1))
+        return TermBound("−(μ+1)hW", raised, rule, then=(*then, RaiseOnRegion("w", sg + 1, share=half)))
+    return TermBound("−(μ+1)hW", -(m + 1) * d_min**k * hh * w ** (m + 1), rule, then=then)
 
 
 def _hdot_term(m, sg, tree):
-    """γνh^{ν−1}ḣ‖η‖^{σ−1}ωᵀJη: Cauchy–Schwarz, (15) with μ, the tree l ≤ a1e1 + a2e2, :func:`hdot_young`."""
-    s, A = sympy.Integer(sg), a1 + a2
+    """γνh^{ν−1}ḣ‖η‖^{σ−1}ωᵀJη: Cauchy–Schwarz, (15) with μ, the tree l ≤ a1e1 + a2e2, :func:`hdot_young`
+    (for σ > μ then e_i^{σ(μ+1)/μ} ≤ δ1^{(σ−μ)/μ}e_i^{σ+1} on the region)."""
+    s, r, A = sympy.Integer(sg), sympy.Integer(m), a1 + a2
     fifteen = UpperBound("hw", L15 * hh ** (1 + (1 - nu) / (m + 1)) * w, _condition15_rule(int(m)),
                          "(15): |ḣ|‖ω‖ ≤ L h^(1+(1−ν)/(μ+1))‖ω‖")
-    bound = gamma * nu * j_max * L15 * (eta_h * A**s * hh * w ** (s + 1) / (s + 1)
-                                        + s / (s + 1) * eta_h ** (-1 / s) * A ** (s - 1) * hh**nu
-                                        * (a1 * e1 ** (s + 1) + a2 * e2 ** (s + 1)))
+    r = s if sg <= m else r  # σ < μ: the σ-split all the same (the conclusion says where it breaks)
+    lower = (OnRegion("e1", s + 1), OnRegion("e2", s + 1)) if r < s else ()
+    bound = gamma * nu * j_max * L15 * (eta_h * A**s * hh * w ** (r + 1) / (r + 1)
+                                        + r / (r + 1) * eta_h ** (-1 / r) * delta1 ** ((s - r) / r) * A ** (s - 1)
+                                        * hh**nu * (a1 * e1 ** (s + 1) + a2 * e2 ** (s + 1)))
     return TermBound("γνh^{ν−1}ḣ‖η‖^{σ−1}ωᵀJη", bound,
                      CauchySchwarz(h(t).diff(t) * omega(t), eta, (measured(HW), _eta_norm), matrix=J,
                                    factor=gamma * nu * hh ** (nu - 1) * l ** (sg - 1), operator_norm=_j_norm),
-                     then=(fifteen, tree, *hdot_young(sg)))
+                     then=(fifteen, tree, *hdot_young(sg, r), *lower))
 
 
 def _grad_term(m, sg, tree, region):
@@ -329,7 +347,7 @@ def _vdot_bounds(m=3, sg=3):
     region = UpperBound("l2", (a1 + a2) * delta1, eta_on_region, "‖η‖ ≤ (a1 + a2)δ1 on the region")
     more = (tree,) if sg > 3 else ()  # ‖η‖^{σ−3} in the ηᵀM-term
     return [
-        _damping(m),
+        _damping(m, sg),
         _hdot_term(m, sg, tree),
         TermBound("−γ(σ−1)h^ν‖η‖^{σ−3}(ηᵀM)(ωᵀJη)", _mixed((sg - 1) * gamma * j_max * (a1 + a2), sg),
                   ProductCS(CauchySchwarz(eta, _M, (_eta_norm, _M_norm)),
@@ -354,8 +372,9 @@ def _vdot_bounds(m=3, sg=3):
 def chain_steps(mu_value=3, sigma_value=None):
     """(V ≥ L, V ≤ U, V̇ ≤ W) of the proof of Theorem 2 on :data:`REGION` for W of order μ + 1 and ‖η‖^{σ−1} in V.
 
-    μ, σ odd integers ≥ 3 (σ = μ unless given).  The splits are derived for σ = μ; with σ ≠ μ the steps are
-    built all the same (V's terms with σ, the damping with μ) and the checks say where the chain breaks.
+    μ, σ odd integers ≥ 3 (σ = μ unless given).  The splits are derived for σ ≥ μ (for σ > μ the damping is
+    raised on the region, :func:`_damping`); with σ < μ the steps are built all the same (V's terms with σ, the
+    damping with μ) and the checks say where the chain breaks (at the conclusion).
 
     Examples
     --------
@@ -402,6 +421,12 @@ def find_choices(values, box=None, *, mu=3, sigma=None) -> dict:
     ū the sups of U's coefficients), rounded down.  Floating point only picks the numbers: every step is
     proved at them.  (μ = σ = 3: the catalogued item.)
 
+    σ > μ: the ḣ-term is split with (μ+1, (μ+1)/μ) (:func:`hdot_young`): its e-part carries δ1^{(σ−μ)/μ} and
+    μ/(μ+1)·η_h^{−1/μ} (η_h takes its quarter with these), its w-part γνjLη_hA^σ/(μ+1)·h w^{μ+1} is at most
+    a quarter of the damping (μ+1)d_min^{k_μ}, which keeps half of itself at h w^{μ+1} and raises half to
+    ½(μ+1)d_min^{k_μ}δ_ω^{μ−σ}h w^{σ+1}; the mixed terms take at most half of that, and the other half,
+    ¼(μ+1)d_min^{k_μ}δ_ω^{μ−σ}, is the w-margin of α8 in place of ((μ+1)/2)d_min^{k_μ}.
+
     With ``box`` (name → (lo, hi), from a run over a box) the boxed a1, a2 enter at their worst ends for
     each use, as the chain's coefficients enclosed over the box see them: a_min the smallest lower end
     (the −γε^λ margins), a_max and a1 + a2 the largest upper ends (every positive coefficient); ε, δ1,
@@ -433,13 +458,21 @@ def find_choices(values, box=None, *, mu=3, sigma=None) -> dict:
     a, e_k = sum(float(hi) for _, hi in ends), float(eps_) ** lam
     margin = e_k * a_lo ** (s + 1)  # ε^λ a_min^{σ+1}
     K = jmax * a * (s + float(d1)) + (m + 1) * dmax**km * a * float(d1) * float(dw) ** (m - 2) * H
-    et_h = _rational((4 * s * nu_ * jmax * L * a ** (s - 1) * a_hi / ((s + 1) * margin)) ** s, up=True)
+    rr = m if s > m else s  # the ḣ-term's Young pair (μ+1, (μ+1)/μ) for σ > μ (:func:`hdot_young`)
+    low = float(d1) ** ((s - rr) / rr)  # δ1^{(σ−μ)/μ} of e_i^{σ(μ+1)/μ} lowered to e_i^{σ+1}
+    et_h = _rational((4 * rr * nu_ * jmax * L * low * a ** (s - 1) * a_hi / ((rr + 1) * margin)) ** rr, up=True)
     et_w = _rational((4 * (s - 1) * K * a ** (s - 2) * a_hi / ((s + 1) * margin)) ** ((s - 1) / 2), up=True)
-    per_gamma = (nu_ * jmax * L * float(et_h) * a**s / (s + 1)
-                 + 2 * K * a ** (s - 1) * float(et_w) * H ** (nu_ - 1) / (s + 1))
+    hdot_w = nu_ * jmax * L * float(et_h) * a**s / (rr + 1)  # per γ: at h w^{μ+1} (σ > μ) or h w^{σ+1}
+    mixed_w = 2 * K * a ** (s - 1) * float(et_w) * H ** (nu_ - 1) / (s + 1)  # per γ: at h w^{σ+1}
     c16 = jmax * a ** (s - 1) * float(d1) ** (s - 1) * H**nu_
-    damping = (m + 1) / 2 * dmin**km  # half of the damping's (μ+1)d_min^{k_μ}
-    g = _rational(min(damping / per_gamma, 0.5 * min(jmin / (c16 * a), 1 / c16)))
+    C = (m + 1) * dmin**km
+    if s > m:  # half of the damping kept at w^{μ+1}, half raised to δ_ω^{μ−σ}w^{σ+1} (:func:`_damping`)
+        damping = C / 4 * float(dw) ** (m - s)  # what is left at w^{σ+1}
+        g_w = min(C / 4 / hdot_w, damping / mixed_w)
+    else:
+        damping = C / 2
+        g_w = damping / (hdot_w + mixed_w)
+    g = _rational(min(g_w, 0.5 * min(jmin / (c16 * a), 1 / c16)))
     u_w, u_e = jmax / 2 + float(g) * c16 * a / 2, a_hi / 2 * (1 + float(g) * c16)
     alpha = _rational(0.9 * min(damping * H ** (1 - nu_) / u_w**lam, float(g) * margin / (2 * u_e**lam))
                       / 3 ** (lam - 1))

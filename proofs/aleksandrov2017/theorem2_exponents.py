@@ -1,9 +1,9 @@
-"""Theorem 2 of paper 001 for other exponents: W = (ωᵀDω)^{(μ+1)/2} and σ = μ, μ an odd integer ≥ 3 (issue 23).
+"""Theorem 2 of paper 001 for other exponents: W = (ωᵀDω)^{(μ+1)/2} and σ ≥ μ, μ, σ odd integers ≥ 3 (issue 23).
 
 The paper (section 5) takes W positive definite, C¹, homogeneous of order μ + 1 with μ > 1; the proof's
 V = ½ωᵀJω + Σ(a_i/2)‖s_i − r_i‖² + γh^ν‖η‖^{σ−1}ωᵀJη with σ ≥ 1, and its last step needs σ ≥ μ and (15)
 |ḣ| ≤ L h^{1+(1−ν)/(μ+1)}; then V̇ ≤ −α8 h^ν V^λ, λ = (σ + 1)/2.  Here the instance is
-W = (ωᵀDω)^{(μ+1)/2} with σ = μ, for μ odd: (μ+1)/2 and (σ−1)/2 are integers, so W, grad W and
+W = (ωᵀDω)^{(μ+1)/2} with σ ≥ μ, for μ, σ odd: (μ+1)/2 and (σ−1)/2 are integers, so W, grad W and
 ‖η‖^{σ−1} = (‖η‖²)^{(σ−1)/2} are polynomials and every rule works on polynomial identities (even μ would
 put ‖η‖ and (ωᵀDω)^{1/2} under square roots: refused, :func:`.theorem2_functional.instance`).
 
@@ -29,9 +29,19 @@ The splits (E = a1e1 + a2e2 ≥ ‖η‖ by the norm tree, A = a1 + a2, R = Aδ1
   y = h^{(σ−1)ν/(σ+1)}e1^a e2^{σ−1−a} (weight η_w) and ((σ−1)/a, (σ−1)/(σ−1−a)) on the mixed powers.
 * −(μ+1)hW ≤ −(μ+1)λ_min(D)^{(μ+1)/2}h w^{μ+1} and −γh^ν‖η‖^{σ+1} ≤ −γε^λh^ν(a1²e1² + a2²e2²)^λ (Lemma 1).
 * the conclusion with λ = (σ+1)/2 (:class:`~lkverify.certify.steps.timevarying.TimeVaryingRate`):
-  W + α8 h^ν 3^{λ−1}Σū_k^λ x_k^{2λ} ≤ 0 coefficient-wise, x_k^{2λ} = w^{σ+1}, e_i^{σ+1}: it needs the
-  damping's w^{μ+1} to be the w^{σ+1} of the splits, i.e. σ = μ here (σ < μ leaves h^ν w^{σ+1} with a
-  positive coefficient and nothing to absorb it: the conclusion fails at that monomial).
+  W + α8 h^ν 3^{λ−1}Σū_k^λ x_k^{2λ} ≤ 0 coefficient-wise, x_k^{2λ} = w^{σ+1}, e_i^{σ+1}: the damping must
+  reach the w^{σ+1} of the splits (σ < μ leaves h^ν w^{σ+1} with a positive coefficient and nothing to
+  absorb it: the conclusion fails at that monomial).
+
+σ > μ (proved, the paper's "if σ ≥ μ"): on the region w ≤ δ_ω half of the damping is raised,
+−w^{μ+1} ≤ −½w^{μ+1} − ½δ_ω^{μ−σ}w^{σ+1} (:class:`~lkverify.certify.steps.rewrites.RaiseOnRegion`, its
+factor ≤ 0 and δ_ω > 0 decided); the ḣ-term is split with (μ+1, (μ+1)/μ) as in the paper, so its w-part
+h w^{μ+1} meets the kept half and its e-parts e_i^{σ(μ+1)/μ} ≤ δ1^{(σ−μ)/μ}e_i^{σ+1} are lowered on the region
+(:class:`~lkverify.certify.steps.rewrites.OnRegion`); this holds for every ν ≥ 1 (the (σ+1)-split would
+need (15) with σ in place of μ once ν > 1).  W then has h w^{μ+1} with a negative coefficient besides the
+monomials of the conclusion.  ``theorem2_for(3, 5)`` (λ = 3) is established at the section 6 gains, at
+ν = 1 and at ν = 9/8 (α8 ≈ 9·10⁻¹² and 6·10⁻¹² with :func:`~.theorem2_chain.find_choices`), in about 7 s;
+``theorem2_for(5, 7)`` (λ = 4) in about 36 s (a slow test).  Neither is catalogued.
 
 Catalogued: ``aleksandrov2017.theorem2_mu5`` (W = (ωᵀDω)³, λ = 3), at the section 6 gains with choices from
 :func:`~.theorem2_chain.find_choices`; ``aleksandrov2017.theorem2`` is μ = σ = 3 (:mod:`.theorem2`).
@@ -67,7 +77,8 @@ def theorem2_for(mu_value, sigma_value=None, *, name=None) -> Theorem:
     Parameters
     ----------
     mu_value, sigma_value : int
-        Odd integers ≥ 3; σ ≠ μ builds the chain all the same (to see where it breaks).
+        Odd integers ≥ 3; σ > μ is proved as σ = μ is (the damping raised on the region); σ < μ builds the
+        chain all the same (to see where it breaks: at the conclusion).
     name : str, optional
         The item's name (default ``theorem2_mu<μ>``, with ``_sigma<σ>`` when σ ≠ μ).
 

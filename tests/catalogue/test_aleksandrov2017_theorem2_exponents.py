@@ -4,6 +4,10 @@ The chain for W = (ωᵀDω)³ (μ = σ = 5, λ = 3) at the section 6 gains: the
 exponents of the splits, and mutations that must not pass: a wrong Young exponent, a non-conjugate pair,
 a dropped term, a flipped sign, a wrong rate, σ < μ (refuted at the conclusion), an even μ (refused).
 μ = 7 and the catalogued μ = 3 rebuilt by the general builder: slow / cheap checks below.
+
+σ > μ (μ = 3, σ = 5, at ν = 1 and ν = 9/8; μ = 5, σ = 7 slow): the damping's power raised on the region
+(RaiseOnRegion, half of the term) and the ḣ-term split with (μ+1, (μ+1)/μ); mutations: a wrong δ_ω exponent,
+the raise dropped (the rewrite, or the whole idea: then the conclusion fails at w⁶).
 """
 
 import dataclasses
@@ -20,6 +24,7 @@ from lkverify.proofs.aleksandrov2017.theorem2_functional import instance
 
 R = sympy.Rational
 HDOT = "γνh^{ν−1}ḣ‖η‖^{σ−1}ωᵀJη"
+DAMP = "−(μ+1)hW"
 
 
 @pytest.fixture(scope="module")
@@ -145,5 +150,77 @@ def test_the_general_builder_at_mu_3_is_the_catalogued_chain():
 @pytest.mark.slow  # ≈ 80 s alone (the degree-8 identity ≈ 77 s), several minutes on a loaded machine
 def test_mu_7_is_established():
     rep = theorem2_for(7).run({})
+    assert rep.verdict.startswith("established"), rep.verdict
+    assert next(r for r in rep.results if r.name == "V̇ ≤ −α8 h^ν V^λ").value["lam"] == "4"
+
+
+# -- σ > μ: the damping's power raised on the region ---------------------------------------------------
+@pytest.fixture(scope="module")
+def item35():
+    return theorem2_for(3, 5)
+
+
+@pytest.fixture(scope="module")
+def values35():
+    return P.resolve(chain.find_choices(P.resolve({}, use_defaults=True), mu=3, sigma=5), use_defaults=True)
+
+
+@pytest.fixture(scope="module")
+def checked35(item35, values35):
+    return {s.role: (s, s.check(values35, budget=120)) for s in item35.steps}
+
+
+@pytest.mark.parametrize("nu", ["1", "9/8"])
+def test_sigma_above_mu_is_established(item35, nu):
+    """μ = 3, σ = 5 (λ = 3): ≈ 7 s each.  ν = 9/8 needs the ḣ-term's (μ+1, (μ+1)/μ) split: (15) with μ gives
+    h^{ν−1}|ḣ| ≤ Lh^{35/32}, and the (σ+1, (σ+1)/σ) pair would need h^{53/48}."""
+    rep = item35.run({"nu": nu})
+    assert rep.verdict.startswith("established"), rep.verdict
+    by = {r.name: r for r in rep.results}
+    assert by["Vdot_structured"].status is Status.EXACT
+    rate = by["V̇ ≤ −α8 h^ν V^λ"]
+    assert rate.status is Status.CERTIFIED and rate.value["lam"] == "3"
+    assert R(rate.value["alpha"]) <= rate.value["alpha_largest"]
+
+
+def test_sigma_above_mu_raises_half_of_the_damping(checked35):
+    step, res = checked35["vdot"]
+    assert res.status is Status.CERTIFIED, res.detail
+    tb = next(b for b in step.bounds if b.terms == (DAMP,))
+    w, hh, dw, dmin = chain.w, chain.hh, chain.delta_w, chain.d_min
+    assert sympy.expand(tb.bound + 2 * dmin**2 * hh * (w**4 + dw**-2 * w**6)) == 0
+    assert type(tb.then[-1]).__name__ == "RaiseOnRegion" and tb.then[-1].share == R(1, 2)
+    first = next(b for b in step.bounds if b.terms == (HDOT,)).then[2]
+    assert {p[2:4] for p in first.pairs} == {(4, R(4, 3))}       # (μ+1, (μ+1)/μ)
+
+
+def test_a_wrong_delta_exponent_is_not_proved(values35, checked35):
+    """−4d²h w⁴ ≤ −2d²h(w⁴ + δ_ω^{μ−σ−1}w⁶): δ_ω^{−3} instead of δ_ω^{−2}, false at w = δ_ω."""
+    step = checked35["vdot"][0]
+    w, hh, dw, dmin = chain.w, chain.hh, chain.delta_w, chain.d_min
+    res = _replace(step, DAMP, bound=-2 * dmin**2 * hh * (w**4 + dw**-3 * w**6)).check(values35, search=False)
+    bad = next(tr for tr in res.terms if tr.terms == (DAMP,))
+    assert not res.status.is_proof and not bad.status.is_proof
+    assert "the stated bound is not the rule's" in bad.detail, bad.detail
+
+
+def test_without_the_raise_the_chain_does_not_close(values35, checked35, item35):
+    step = checked35["vdot"][0]
+    tb = next(b for b in step.bounds if b.terms == (DAMP,))
+    # the raised bound stated but the rewrite dropped: not the rule's bound
+    res = _replace(step, DAMP, then=tb.then[:-1]).check(values35, search=False)
+    assert not next(tr for tr in res.terms if tr.terms == (DAMP,)).status.is_proof
+    # the damping left at w⁴: the step holds, the conclusion fails at w⁶ (nothing absorbs h^ν w⁶ near 0)
+    w, hh, dmin = chain.w, chain.hh, chain.d_min
+    plain = _replace(step, DAMP, bound=-4 * dmin**2 * hh * w**4, then=tb.then[:-1])
+    res = plain.check(values35, search=False)
+    assert res.status.is_proof, res.detail
+    status, detail = item35.decay.certify({**checked35, "vdot": (plain, res)}, values35)[1:]
+    assert status is Status.FAILED and "fails at the monomial w**6" in detail, detail
+
+
+@pytest.mark.slow  # ≈ 36 s alone (μ = 5, σ = 7: the degree-8 identity)
+def test_sigma_above_mu_5_7_is_established():
+    rep = theorem2_for(5, 7).run({})
     assert rep.verdict.startswith("established"), rep.verdict
     assert next(r for r in rep.results if r.name == "V̇ ≤ −α8 h^ν V^λ").value["lam"] == "4"

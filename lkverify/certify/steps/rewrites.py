@@ -7,6 +7,8 @@ side conditions checked exactly (structurally, on nonnegative measures):
 * :class:`YoungEach` — Young's inequality on every additive term c·x·y that matches one of
   the given pairs (x, y), the sign of c checked against the direction;
 * :class:`OnRegion` — x^a ≤ h^{a−k} x^k for a measure x ≤ h on the region (a ≥ k);
+* :class:`RaiseOnRegion` — x^a ≥ h^{a−k} x^k for a measure x ≤ h on the region (0 < a < k, h > 0):
+  a power raised in a term of the sign that lets the larger power replace the smaller;
 * :class:`WindowHolder` — ∫‖v‖^k ≤ h^{1−k/P}(∫‖v‖^P)^{k/P} (Hölder on the window);
 * :class:`PowerSplit` — (ΣA_i)^ν ≥ A_k^ν for A_i ≥ 0, ν > 0, in each term of the bound;
 * :class:`LowerBound` — a measure replaced by a lower bound that a certified lemma gives on
@@ -35,6 +37,8 @@ Examples
 3*a**2 + 2*b**2
 >>> OnRegion("a", 2).rewrite(5 * A**3 * B, ctx).bound                  # a³ ≤ (1/10)a² on a ≤ 1/10
 a**2*b/2
+>>> RaiseOnRegion("a", 4).rewrite(-A**2 * B, ctx).bound              # −a² ≤ −100a⁴ on a ≤ 1/10
+-100*a**4*b
 """
 
 from __future__ import annotations
@@ -48,7 +52,7 @@ from ...status import Status
 from ..monomials import split_terms as _split
 from .rules import Application, Condition, Rule, _cond, conjugate_exponents, nonnegative
 
-__all__ = ["LowerBound", "OnRegion", "PowerSplit", "WindowHolder", "YoungEach"]
+__all__ = ["LowerBound", "OnRegion", "PowerSplit", "RaiseOnRegion", "WindowHolder", "YoungEach"]
 
 
 def _measure_symbols(ctx) -> set:
@@ -244,6 +248,104 @@ class OnRegion(Rule):
             total += rest * h ** (a - k) * x**k
             used += 1
         conds.append(_cond(f"some term has a power of {x} above {k}", used > 0, f"none in {previous}"))
+        return Application(self.name, sympy.expand(total), tuple(conds))
+
+    def apply(self, term, direction, ctx):
+        return self.rewrite(ctx.at(term), ctx, direction)
+
+
+def _positive_or_not(e) -> bool | None:
+    """True when e > 0 for every value of its symbols, False when e ≤ 0 (0 included) for every value, else None.
+
+    >>> import sympy
+    >>> c = sympy.Symbol("c", real=True)
+    >>> _positive_or_not(sympy.Rational(1, 4)), _positive_or_not(0), _positive_or_not(c), _positive_or_not(c**2)
+    (True, False, None, None)
+    """
+    e = sympy.sympify(e)
+    if e.is_positive:
+        return True
+    return False if e.is_nonpositive else None
+
+
+@dataclasses.dataclass(frozen=True)
+class RaiseOnRegion(Rule):
+    """x^a ≥ h^{a−k}·x^k on the region 0 ≤ x ≤ h (h > 0), for every term with x^a, 0 < a < k (``keep`` = k).
+
+    The sibling of :class:`OnRegion` that raises a power: x^a = x^k·x^{a−k} and x^{a−k} ≥ h^{a−k}
+    for 0 < x ≤ h since a − k < 0 (x = 0: both sides 0).  A term c·x^a may be replaced by
+    c·h^{a−k}x^k only when c ≤ 0 in an upper bound (then c·x^a ≤ c·h^{a−k}x^k) and c ≥ 0 in a lower
+    bound.  This is how a damping −h‖ω‖^{μ+1} absorbs the ‖ω‖^{σ+1} of other terms near 0 when
+    σ > μ: −w^{μ+1} ≤ −δ^{μ−σ}w^{σ+1} on w ≤ δ.  Terms whose power of x is not in (0, k)
+    (x absent included) are kept as they are; h = 0 is refused (h^{a−k} is not finite).
+
+    ``share`` = θ raises only the part θ of each such term and keeps the rest:
+    c·x^a = θc·x^a + (1−θ)c·x^a ≤ θc·h^{a−k}x^k + (1−θ)c·x^a (for c ≤ 0), so a damping can meet both
+    its own power and the raised one (θ = 1, the default: the whole term).
+
+
+    ==============================  ==========================================================
+    licenses                        x^a ≥ h^{a−k}x^k for 0 ≤ x ≤ h, h > 0, 0 < a < k (on the
+                                    share θ of each term, 0 < θ ≤ 1)
+    direction                       ≤ steps: each raised term's factor ≤ 0; ≥ steps: ≥ 0
+    side conditions                 the region bounds the measure by h; h > 0 for every value
+                                    of the parameters; 0 < θ ≤ 1; each raised factor's sign;
+                                    some term has a power of x below k
+    ==============================  ==========================================================
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from lkverify import Equation, Parameters, System, Term, Vector, t
+    >>> from lkverify.certify.steps.measures import Region, norm_measure
+    >>> from lkverify.certify.steps.rules import Context
+    >>> P = Parameters(); x = Vector("x", 2); a = norm_measure("a", x(t)); A = a.symbol
+    >>> ctx = Context(System([Equation(x, [Term(-x(t))])], parameters=P), P.resolve({}), {"a": a},
+    ...               Region({a: sympy.Rational(1, 2)}))
+    >>> RaiseOnRegion("a", 6).rewrite(-4 * A**4, ctx, "upper").bound      # −4a⁴ ≤ −16a⁶ on a ≤ 1/2
+    -16*a**6
+    >>> RaiseOnRegion("a", 6).rewrite(4 * A**4, ctx, "upper").status.value  # 4a⁴ ≤ 16a⁶ is false
+    'failed'
+    >>> RaiseOnRegion("a", 6, share=sympy.Rational(1, 2)).rewrite(-4 * A**4, ctx, "upper").bound
+    -8*a**6 - 2*a**4
+    """
+
+    measure: str
+    keep: object
+    share: object = 1
+    name = "a power raised on the region (0 ≤ x ≤ h, h > 0 ⇒ x^a ≥ h^{a−k}x^k)"
+    directional = True
+
+    def rewrite(self, previous, ctx, direction: str = "upper") -> Application:
+        m = ctx.measure(self.measure)
+        x, k = m.symbol, ctx.at(self.keep)
+        h = None if ctx.region is None else ctx.region.bound_of(m, ctx.sub)
+        conds = [_cond(f"the region bounds {m.text}", h is not None, "no bound on it follows from the region")]
+        if h is None:
+            return Application(self.name, None, tuple(conds))
+        h = ctx.at(h)
+        h_ok = _positive_or_not(h)
+        conds.append(_cond(f"{m.text} ≤ {h}, h > 0", h_ok,
+                           "h ≤ 0" if h_ok is False else "h > 0 is not shown for every value of the parameters"))
+        theta = ctx.at(self.share)
+        theta_ok = _all_of(_positive_or_not(theta), _nonnegative_or_negative(1 - theta))
+        conds.append(_cond(f"the share θ = {theta} raised: 0 < θ ≤ 1", theta_ok,
+                           "it is not" if theta_ok is False else "not shown for every value of the parameters"))
+        if h_ok is False:
+            return Application(self.name, None, tuple(conds))
+        total, used = sympy.S.Zero, 0
+        for c, mono in _split(ctx.at(previous), _measure_symbols(ctx)):
+            a = sympy.powsimp(mono, force=True).as_powers_dict().get(x, sympy.S.Zero)
+            if not (sympy.sympify(a).is_positive and sympy.sympify(k - a).is_positive):
+                total += c * mono
+                continue
+            rest = c * mono / x**a
+            ok = _signed(-rest, direction)
+            conds.append(_cond(f"the factor {rest} of {x}^{a} is {'≤' if direction == 'upper' else '≥'} 0", ok,
+                               _other_sign(ok)))
+            total += theta * rest * h ** (a - k) * x**k + (1 - theta) * c * mono
+            used += 1
+        conds.append(_cond(f"some term has a power of {x} in (0, {k})", used > 0, f"none in {previous}"))
         return Application(self.name, sympy.expand(total), tuple(conds))
 
     def apply(self, term, direction, ctx):
