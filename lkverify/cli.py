@@ -111,16 +111,17 @@ def _build_parser(*, lazy: bool = False) -> argparse.ArgumentParser:
     lp.add_argument("--json", action="store_true", help="print a JSON list of objects with the keys item, kind, title")
     _add_quiet(lp)
     rp = sub.add_parser("report", help="report every catalogued item at the papers' defaults (what the bare "
-                        "`lkverify` does); prints progress lines on stderr, about 1.5 minutes in process, a second "
+                        "`lkverify` does); prints progress lines on stderr, about a minute on 2 cores, a second "
                         "from the proof cache")
     rp.add_argument("--json", action="store_true", help="print a JSON list with one object per item: item, "
                     "parameters, results (kind, name, status, value, detail), verdict and versions")
     rp.add_argument("--jobs", type=int, default=None, metavar="N",
-                    help="items run on a local Dask cluster of N worker processes (default: one after the other "
-                         "in this process); the output order is the catalogue's")
+                    help="items run on a local Dask cluster of N worker processes; 1: one after the other in this "
+                         "process (default: one worker per CPU when 4 or more items are to be run); the output "
+                         "order is the catalogue's")
     rp.add_argument("--scheduler", default=None, metavar="ADDRESS",
                     help="run the items on a running Dask scheduler (tcp://host:8786), or 'local' for a local "
-                         "cluster of one worker per CPU; default: in this process (or --jobs)")
+                         "cluster of one worker per CPU; default: see --jobs")
     _add_quiet(rp)
     _add_verbose(rp)
     _add_no_cache(rp)

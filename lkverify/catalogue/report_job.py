@@ -1,7 +1,8 @@
 """The bare report's job: every catalogued item at its defaults, on the one parallel back-end, through the proof cache.
 
-:func:`catalogue_report` runs the items in this process one after the other (default), on a
-local Dask cluster (``jobs``) or on a running scheduler (``scheduler``), via
+:func:`catalogue_report` runs the items on a local Dask cluster of one worker per CPU (default, when
+there are a few items to run and more than one CPU), in this process one after the other (``jobs=1``),
+on a local cluster of ``jobs`` workers or on a running scheduler (``scheduler``), via
 :func:`lkverify.parallel.run_tasks`; an item whose report is in the proof cache
 (:mod:`lkverify.cache`, the key of ``lkverify check ITEM`` at no values) is not run.  The
 outputs keep the catalogue's order whatever order the items finish in.
@@ -16,6 +17,9 @@ from .loader import catalogue
 
 __all__ = ["catalogue_report"]
 
+#: the fewest items to run for which the default report starts a local cluster (fewer: in this process)
+AUTO_ITEMS = 4
+
 _ITEMS: dict = {}  # qualified name → item; a worker process fills its own on first use
 
 
@@ -26,6 +30,16 @@ def _report_one(name: str) -> dict:
     if not _ITEMS:  # a fresh worker: load the catalogue once per process
         _ITEMS.update({item.qualified_name: item for pf in catalogue() for item in pf.items.values()})
     return report_payload(_ITEMS[name].run({}))
+
+
+def _auto_jobs(left: int) -> int:
+    """The default number of workers for ``left`` items: one per CPU (at most one per item), or 1 (in process).
+
+    >>> _auto_jobs(1), _auto_jobs(0)
+    (1, 1)
+    """
+    cpus = os.cpu_count() or 1
+    return min(cpus, left) if cpus >= 2 and left >= AUTO_ITEMS else 1
 
 
 def _cached(cache, names) -> dict:
@@ -45,7 +59,9 @@ def catalogue_report(*, jobs: int | None = None, scheduler: str | None = None, s
     Parameters
     ----------
     jobs : int, optional
-        N ≥ 2: a local Dask cluster of N workers; default (or 1) in this process.
+        N ≥ 2: a local Dask cluster of N workers; 1: in this process.  Default: one worker per CPU when
+        at least :data:`AUTO_ITEMS` items are to be run and the machine has 2 or more CPUs (the workers are
+        forked on Linux and inherit the loaded catalogue), else in this process.
     scheduler : str, optional
         ``tcp://host:port`` of a running Dask scheduler, or ``local``.
     say : callable, optional
@@ -86,6 +102,8 @@ def catalogue_report(*, jobs: int | None = None, scheduler: str | None = None, s
     if outputs and note:
         note(f"{len(outputs)} of {len(names)} items from the proof cache ({cache.directory}; --no-cache recomputes)")
     left = [n for n in names if n not in outputs]
+    if jobs is None and scheduler is None:
+        jobs = _auto_jobs(len(left))
     in_process = scheduler in (None, "synchronous") and (jobs is None or jobs == 1)
     # theorems first (their chains are the longest), the examples' short simulations last, so the workers end together
     rank = {"Theorem": 0, "Check": 1}
