@@ -185,6 +185,29 @@ class YoungEach(Rule):
         return self.rewrite(ctx.at(term), ctx, direction)
 
 
+def _region_bound(rule, ctx, *, strict: bool):
+    """(measure, its symbol x, k, h, conditions, h's sign) of a rule on the region's bound x ≤ h (h None: none).
+
+    The conditions: the region bounds the measure, and h ≥ 0 (``strict``: h > 0) for every value.
+    """
+    m = ctx.measure(rule.measure)
+    x, k = m.symbol, ctx.at(rule.keep)
+    h = None if ctx.region is None else ctx.region.bound_of(m, ctx.sub)
+    conds = [_cond(f"the region bounds {m.text}", h is not None, "no bound on it follows from the region")]
+    if h is None:
+        return m, x, k, None, conds, None
+    h = ctx.at(h)
+    if strict:
+        h_ok = _positive_or_not(h)
+        conds.append(_cond(f"{m.text} ≤ {h}, h > 0", h_ok,
+                           "h ≤ 0" if h_ok is False else "h > 0 is not shown for every value of the parameters"))
+    else:
+        h_ok = _nonnegative_or_negative(h)
+        conds.append(_cond(f"{m.text} ≤ {h}, h ≥ 0", h_ok,
+                           "h < 0" if h_ok is False else "the sign of h is not shown for every value of the parameters"))
+    return m, x, k, h, conds, h_ok
+
+
 @dataclasses.dataclass(frozen=True)
 class OnRegion(Rule):
     """x^a ≤ h^{a−k}·x^k on the region x ≤ h, for every term with x^a, a > k (``keep`` = k).
@@ -223,16 +246,9 @@ class OnRegion(Rule):
     directional = True
 
     def rewrite(self, previous, ctx, direction: str = "upper") -> Application:
-        m = ctx.measure(self.measure)
-        x, k = m.symbol, ctx.at(self.keep)
-        h = None if ctx.region is None else ctx.region.bound_of(m, ctx.sub)
-        conds = [_cond(f"the region bounds {m.text}", h is not None, "no bound on it follows from the region")]
+        m, x, k, h, conds, _ = _region_bound(self, ctx, strict=False)
         if h is None:
             return Application(self.name, None, tuple(conds))
-        h = ctx.at(h)
-        h_ok = _nonnegative_or_negative(h)
-        conds.append(_cond(f"{m.text} ≤ {h}, h ≥ 0", h_ok,
-                           "h < 0" if h_ok is False else "the sign of h is not shown for every value of the parameters"))
         syms = _measure_symbols(ctx)
         total, used = sympy.S.Zero, 0
         for c, mono in _split(ctx.at(previous), syms):
@@ -317,16 +333,9 @@ class RaiseOnRegion(Rule):
     directional = True
 
     def rewrite(self, previous, ctx, direction: str = "upper") -> Application:
-        m = ctx.measure(self.measure)
-        x, k = m.symbol, ctx.at(self.keep)
-        h = None if ctx.region is None else ctx.region.bound_of(m, ctx.sub)
-        conds = [_cond(f"the region bounds {m.text}", h is not None, "no bound on it follows from the region")]
+        m, x, k, h, conds, h_ok = _region_bound(self, ctx, strict=True)
         if h is None:
             return Application(self.name, None, tuple(conds))
-        h = ctx.at(h)
-        h_ok = _positive_or_not(h)
-        conds.append(_cond(f"{m.text} ≤ {h}, h > 0", h_ok,
-                           "h ≤ 0" if h_ok is False else "h > 0 is not shown for every value of the parameters"))
         theta = ctx.at(self.share)
         theta_ok = _all_of(_positive_or_not(theta), _nonnegative_or_negative(1 - theta))
         conds.append(_cond(f"the share θ = {theta} raised: 0 < θ ≤ 1", theta_ok,
