@@ -97,7 +97,6 @@ def main():
     ap.add_argument("--folder", default=None, help=argparse.SUPPRESS)
     args = ap.parse_args()
     if args.child is not None:   # one worker count in this fresh process: print its numbers as JSON
-        from lkverify.sweep import sweep as _  # noqa: F401 — the import is not the sweep's time
         res, wall, steady = one(args.child, args, args.folder)
         print(json.dumps({"wall": wall, "timings": {k: v for k, v in res.timings.items() if isinstance(v, float)},
                           "steady": steady, "counts": res.counts, "out": str(Path(args.folder) / f"w{args.child}.parquet")}))

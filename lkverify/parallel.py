@@ -25,6 +25,7 @@ from __future__ import annotations
 import dataclasses
 import logging
 import os
+import sys
 import time
 from collections.abc import Callable, Iterator, Mapping
 
@@ -130,8 +131,6 @@ def _start_method() -> str:
     forks unsafely once system frameworks are loaded and Windows cannot fork, so they keep ``spawn``.
     ``LKVERIFY_START_METHOD`` (``fork``, ``spawn``, ``forkserver``) overrides the choice.
     """
-    import sys
-
     method = os.environ.get("LKVERIFY_START_METHOD") or ("fork" if sys.platform.startswith("linux") else "spawn")
     if method not in ("fork", "spawn", "forkserver"):
         raise InputError(f"LKVERIFY_START_METHOD: expected fork, spawn or forkserver, got {method!r}; unset it for "

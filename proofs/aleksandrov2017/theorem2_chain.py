@@ -303,10 +303,10 @@ def _damping(m, sg=None):
 def _hdot_term(m, sg, tree):
     """γνh^{ν−1}ḣ‖η‖^{σ−1}ωᵀJη: Cauchy–Schwarz, (15) with μ, the tree l ≤ a1e1 + a2e2, :func:`hdot_young`
     (for σ > μ then e_i^{σ(μ+1)/μ} ≤ δ1^{(σ−μ)/μ}e_i^{σ+1} on the region)."""
-    s, r, A = sympy.Integer(sg), sympy.Integer(m), a1 + a2
+    s, A = sympy.Integer(sg), a1 + a2
+    r = sympy.Integer(m) if sg > m else s  # σ < μ: the σ-split all the same (the conclusion breaks)
     fifteen = UpperBound("hw", L15 * hh ** (1 + (1 - nu) / (m + 1)) * w, _condition15_rule(int(m)),
                          "(15): |ḣ|‖ω‖ ≤ L h^(1+(1−ν)/(μ+1))‖ω‖")
-    r = s if sg <= m else r  # σ < μ: the σ-split all the same (the conclusion says where it breaks)
     lower = (OnRegion("e1", s + 1), OnRegion("e2", s + 1)) if r < s else ()
     bound = gamma * nu * j_max * L15 * (eta_h * A**s * hh * w ** (r + 1) / (r + 1)
                                         + r / (r + 1) * eta_h ** (-1 / r) * delta1 ** ((s - r) / r) * A ** (s - 1)
