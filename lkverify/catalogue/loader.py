@@ -362,8 +362,17 @@ def catalogue(*, load_limit: float | None = LOAD_LIMIT_SECONDS) -> list[ProofFil
     >>> [pf.paper for pf in catalogue()] == sorted(files)
     True
     """
-    names = sorted(info.name for info in pkgutil.iter_modules(_proofs_package().__path__))
-    return [load_proof_module(f"{PROOFS_PACKAGE}.{name}", load_limit=load_limit) for name in names]
+    return [load_proof_module(name, load_limit=load_limit) for name in proof_module_names()]
+
+
+def proof_module_names() -> list[str]:
+    """The modules of the shipped proof packages (``lkverify.proofs.<paper>``), in name order, none imported.
+
+    >>> proof_module_names()[0]
+    'lkverify.proofs.aleksandrov2017'
+    """
+    return [f"{PROOFS_PACKAGE}.{info.name}"
+            for info in sorted(pkgutil.iter_modules(_proofs_package().__path__), key=lambda info: info.name)]
 
 
 def find_items(spec: str, *, load_limit: float | None = LOAD_LIMIT_SECONDS) -> list[Item]:

@@ -13,7 +13,7 @@ from __future__ import annotations
 import os
 
 from ..errors import InputError, InternalError
-from .loader import catalogue
+from .loader import catalogue, proof_module_names
 
 __all__ = ["catalogue_report"]
 
@@ -79,7 +79,7 @@ def catalogue_report(*, jobs: int | None = None, scheduler: str | None = None, s
         An item's run raised.
     """
     from ..cache import item_key, report_payload
-    from ..parallel import Cluster, run_tasks
+    from ..parallel import Cluster, prepare, run_tasks
 
     if jobs is not None and jobs < 1:
         raise InputError(f"--jobs: expected a positive number of worker processes, got {jobs}; e.g. --jobs 2")
@@ -91,6 +91,9 @@ def catalogue_report(*, jobs: int | None = None, scheduler: str | None = None, s
     names = list(listed["names"]) if listed and isinstance(listed.get("names"), list) else None
     outputs = _cached(cache, names) if names else {}
     if names is None or len(outputs) < len(names):
+        if jobs != 1 and scheduler in (None, "local"):
+            # the workers' fork server imports the proof packages while this process loads the catalogue too
+            prepare(Cluster(scheduler=scheduler, workers=jobs), also=tuple(proof_module_names()))
         todo = [item for pf in catalogue() for item in pf.items.values()]
         _ITEMS.clear()
         _ITEMS.update({item.qualified_name: item for item in todo})

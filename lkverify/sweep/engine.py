@@ -36,7 +36,7 @@ import numpy as np
 from ..errors import InputError
 from ..report.files import check_writable_file
 from .evaluate import CLASSES, run_chunk
-from ..parallel import run_tasks
+from ..parallel import prepare, run_tasks
 from .grid import Grid
 from .plan import Plan, PointChecks, build_plan, holds, sub_grids, weakest
 
@@ -210,7 +210,8 @@ def sweep(item, *, grid: Sequence[str] | Grid, sets: Sequence[str] = (), out, op
 
     Notes
     -----
-    The default LocalCluster starts its workers as new Python processes (Dask's ``spawn``):
+    The default LocalCluster's workers fork from a fork server on Linux and are new Python processes
+    elsewhere (Dask's ``spawn``); either way they import the calling script's main module:
     a script that calls :func:`sweep` must do so under ``if __name__ == "__main__":``, as
     for any Dask cluster started from a script (``lkverify sweep`` does not need it).
 
@@ -233,6 +234,8 @@ def sweep(item, *, grid: Sequence[str] | Grid, sets: Sequence[str] = (), out, op
     start = time.monotonic()
     grid = grid if isinstance(grid, Grid) else Grid.parse(grid)
     out = check_table_path(out)
+    if grid.size >= IN_PROCESS_POINTS or options.workers is not None or options.prove:
+        prepare(options, also=_proof_package(item))   # a fork server imports while the plan is made
     plan = build_plan(item, grid=grid, sets=sets, t_end=options.t_end, samples=options.samples, rtol=options.rtol,
                       atol=options.atol, level=options.level, max_steps=options.max_steps)
     timings = {"plan": time.monotonic() - start}
@@ -277,6 +280,18 @@ def sweep(item, *, grid: Sequence[str] | Grid, sets: Sequence[str] = (), out, op
     counts = {c: int(np.sum(np.asarray(table.column("simulated").to_pylist(), dtype=object) == c)) for c in CLASSES}
     return SweepResult(plan.item, out, table, meta, counts, complete, reused, time.monotonic() - start,
                        tuple(errors.values()), plan, timings)
+
+
+def _proof_package(item) -> tuple[str, ...]:
+    """The shipped proof package of a catalogued item's name (the workers unpickle its objects), or nothing.
+
+    >>> _proof_package("aleksandrov2023.fig1"), _proof_package("my_proof.py::fig")
+    (('lkverify.proofs.aleksandrov2023',), ())
+    """
+    from ..catalogue.loader import proof_module_names
+
+    name = f"lkverify.proofs.{item.split('.')[0]}" if isinstance(item, str) else None
+    return (name,) if name in proof_module_names() else ()
 
 
 # -- the exact part (client) -------------------------------------------------------------------

@@ -92,9 +92,9 @@ def test_two_worker_local_cluster_equals_serial(serial, tmp_path):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("method", ["fork", "spawn"])
-def test_forked_and_spawned_workers_give_the_serial_table(serial, tmp_path, monkeypatch, method):
-    """A local cluster's workers forked (Linux default: they inherit the imports) or spawned: the same table."""
+@pytest.mark.parametrize("method", ["forkserver", "fork", "spawn"])
+def test_every_start_method_gives_the_serial_table(serial, tmp_path, monkeypatch, method):
+    """A local cluster's workers from a fork server (Linux default), forked or spawned: the same table."""
     monkeypatch.setenv("LKVERIFY_START_METHOD", method)
     assert cluster_module._start_method() == method
     par = sweep(toy(), grid=["a=0.25:2.5:10"], out=tmp_path / f"{method}.parquet",
@@ -104,12 +104,42 @@ def test_forked_and_spawned_workers_give_the_serial_table(serial, tmp_path, monk
     assert columns(par.table, names) == columns(serial.table, names)
 
 
-def test_the_start_method_is_fork_on_linux_and_a_bad_one_is_refused(monkeypatch):
+@pytest.mark.slow
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="the fork server is Linux's default")
+def test_the_fork_servers_workers_start_with_the_preloaded_modules(monkeypatch):
     monkeypatch.delenv("LKVERIFY_START_METHOD", raising=False)
-    assert cluster_module._start_method() == ("fork" if sys.platform.startswith("linux") else "spawn")
+    watched = ("lkverify.sweep.evaluate", "lkverify.simulate.dop853", "lkverify.catalogue.report_job")
+
+    def loaded():   # pickled by value: importing nothing of lkverify on the worker
+        import sys as worker_sys
+
+        return tuple(name in worker_sys.modules for name in watched)
+
+    cluster_module.prepare(cluster_module.Cluster(workers=1))
+    ((_, got, exc),) = cluster_module.run_tasks(loaded, {0: ()}, cluster_module.Cluster(workers=1))
+    assert exc is None
+    assert got == (True, True, False)       # PRELOAD, and nothing else of lkverify's
+
+
+def test_the_start_method_is_a_fork_server_on_linux_and_a_bad_one_is_refused(monkeypatch):
+    monkeypatch.delenv("LKVERIFY_START_METHOD", raising=False)
+    assert cluster_module._start_method() == ("forkserver" if sys.platform.startswith("linux") else "spawn")
     monkeypatch.setenv("LKVERIFY_START_METHOD", "threads")
     with pytest.raises(InputError, match="LKVERIFY_START_METHOD: expected fork, spawn or forkserver, got 'threads'"):
         cluster_module._start_method()
+    with pytest.raises(InputError, match="LKVERIFY_START_METHOD"):   # prepare asks the same question
+        cluster_module.prepare(cluster_module.Cluster())
+
+
+def test_prepare_starts_nothing_for_a_given_scheduler_or_in_process(monkeypatch):
+    import multiprocessing.forkserver as fs
+
+    monkeypatch.delenv("LKVERIFY_START_METHOD", raising=False)
+    monkeypatch.setattr(fs, "ensure_running", lambda: pytest.fail("a fork server was started"))
+    for where in (cluster_module.Cluster(scheduler="synchronous"), cluster_module.Cluster(scheduler="tcp://h:1")):
+        cluster_module.prepare(where)
+    monkeypatch.setenv("LKVERIFY_START_METHOD", "spawn")
+    cluster_module.prepare(cluster_module.Cluster())
 
 
 def test_a_small_sweep_runs_in_process_without_a_cluster(serial, tmp_path, monkeypatch):
