@@ -20,6 +20,7 @@ import sympy
 
 from lkverify import Budget, Check, InputError, Report, Result, Status
 from lkverify.certify.bounds import certify_positive, unit_vector_angles
+from lkverify.memo import Memo
 
 from .equations import PAPER, P
 
@@ -36,27 +37,54 @@ _ROTATED_PAIRS = (np.array([[0.6, -0.8, 0], [0.8, 0.6, 0], [0, 0, 1]]), _Q)  # o
 
 def lemma1_F(eps, a1_=None, a2_=None, r1_=None, r2_=None):
     """F(σ, θ, φ) of the module docstring (u in spherical angles); unset arguments: the declared defaults."""
+    T, N = _lemma1_parts(a1_, a2_, r1_, r2_)
+    return sympy.expand(T - eps * N)
+
+
+def _lemma1_parts(a1_=None, a2_=None, r1_=None, r2_=None):
+    """(‖Σ aᵢ rᵢ×Δᵢ‖², Σ aᵢ²‖Δᵢ‖²), each expanded, with q0 = √(1 − σ²) written out: F = first − ε·second.
+
+    Kept per process by its arguments (F is asked for at every ε and every check of the lemma).
+    """
     a1_ = _DEFAULTS["a1"] if a1_ is None else a1_
     a2_ = _DEFAULTS["a2"] if a2_ is None else a2_
-    r1_ = _DEFAULTS["r1"] if r1_ is None else r1_
-    r2_ = _DEFAULTS["r2"] if r2_ is None else r2_
-    u = _U.value
-    q0 = sympy.sqrt(1 - _sig**2)
-    terms, norms = sympy.zeros(3, 1), 0
-    for a, r in ((a1_, sympy.Matrix(r1_)), (a2_, sympy.Matrix(r2_))):
-        D = 2 * q0 * u.cross(r) + 2 * _sig * u.cross(u.cross(r))  # Δᵢ
-        terms += a * r.cross(D)
-        norms += a**2 * D.dot(D)
-    return sympy.expand(terms.dot(terms) - eps * norms)
+    r1_ = sympy.Matrix(_DEFAULTS["r1"] if r1_ is None else r1_)
+    r2_ = sympy.Matrix(_DEFAULTS["r2"] if r2_ is None else r2_)
+    key = (sympy.sympify(a1_), sympy.sympify(a2_), sympy.ImmutableMatrix(r1_), sympy.ImmutableMatrix(r2_))
+    if key not in _PARTS:
+        u = _U.value
+        q0 = sympy.sqrt(1 - _sig**2)
+        terms, norms = sympy.zeros(3, 1), 0
+        for a, r in ((a1_, r1_), (a2_, r2_)):
+            D = 2 * q0 * u.cross(r) + 2 * _sig * u.cross(u.cross(r))  # Δᵢ
+            terms += a * r.cross(D)
+            norms += a**2 * D.dot(D)
+        _PARTS[key] = (sympy.expand(terms.dot(terms)), sympy.expand(norms))
+    return _PARTS[key]
+
+
+_PARTS = Memo(32)
+_q = sympy.Symbol("q", positive=True)   # q0 = √(1 − σ²) in the sampled estimate
 
 
 def _lemma1_sigma_estimate(eps, r1_=None, r2_=None, n=121):
-    """The first σ where min_u F(σ, u) ≤ 0 (sampled, then bisected): an estimate of σ̄."""
-    f = sympy.lambdify((_sig, _th, _ph), lemma1_F(eps, r1_=r1_, r2_=r2_), "numpy")
-    T, Ph = np.meshgrid(np.linspace(0, np.pi, n), np.linspace(0, 2 * np.pi, 2 * n))
+    """The first σ where min_u F(σ, u) ≤ 0 (sampled, then bisected): an estimate of σ̄.
+
+    F is a polynomial in σ and q0 whose coefficients are functions of the axis u: they are
+    evaluated on the (θ, φ) grid once, and each σ of the bisection costs a few array operations.
+    """
+    T, N = _lemma1_parts(r1_=r1_, r2_=r2_)
+    grid = np.meshgrid(np.linspace(0, np.pi, n), np.linspace(0, 2 * np.pi, 2 * n))
+    root = sympy.sqrt(1 - _sig**2)
+    poly = sympy.Poly((T - sympy.Rational(eps) * N).xreplace({root: _q}), _sig, _q)
+    terms = []
+    for (i, j), c in poly.terms():
+        values = np.broadcast_to(sympy.lambdify((_th, _ph), c, "numpy")(*grid), grid[0].shape)
+        terms.append((i, j, np.asarray(values, dtype=float)))
 
     def m(s):
-        return float(np.min(f(s, T, Ph)))
+        q0 = np.sqrt(1 - s * s)
+        return float(np.min(sum(c * (s**i * q0**j) for i, j, c in terms)))
 
     lo, hi = 0.0, 0.999
     if m(hi) > 0:

@@ -28,6 +28,28 @@ from .witness_problem import _U, MEMORY, _Integral, _Problem, _Slot, _evaluated,
 #: so a result is reused across claims (the dummies are private to the entry and substituted at every use)
 _ANTIDERIVATIVES = Memo(512)
 
+
+def integrate_factored(F, s, lo=None, hi=None):
+    """∫F ds (from ``lo`` to ``hi`` when given), term by term with the factors free of s taken out first.
+
+    The same value as ``sympy.integrate`` by linearity; SymPy's own integration is many times slower
+    when the factors free of s (here: the states' values at a witness point, with their fractional
+    powers) stay inside the integrand.
+
+    >>> from sympy import exp, sqrt, symbols
+    >>> s, a, t = symbols("s a t")
+    >>> integrate_factored(3 * (a**2 + 1) ** sympy.Rational(13, 10) * exp(-2 * s + 2 * t) + a * s, s)
+    a*s**2/2 - 3*(a**2 + 1)**(13/10)*exp(-2*s + 2*t)/2
+    >>> integrate_factored(sqrt(2) * exp(-s), s, 0, 1)
+    sqrt(2)*(1 - exp(-1))
+    """
+    limits = (s,) if lo is None else ((s, lo, hi),)
+    out = []
+    for term in sympy.Add.make_args(F):
+        c, g = term.as_independent(s, as_Add=False)
+        out.append(c * sympy.integrate(g, *limits))
+    return sympy.Add(*out)
+
 __all__: list = []  # internal: lkverify.certify.steps.witnesses (the search) re-exports _Model
 
 
@@ -154,7 +176,7 @@ class _Model:
                                if a.args[0] == var else self.point_map.get(a, a)) for a, d in dummies.items()}
                     total.append((g.xreplace({s_: hi}) - g.xreplace({s_: lo})).xreplace(rep))
                     continue
-                val = sympy.integrate(F.xreplace({var: t - sigma}), (sigma, lo, hi))
+                val = integrate_factored(F.xreplace({var: t - sigma}), sigma, lo, hi)
                 if val.has(sympy.Integral):
                     raise UnsupportedClaim(f"{where}: the weight of {_short(I.node)} could not be integrated "
                                            f"exactly over a piece; use a polynomial weight in {var}")
@@ -197,7 +219,7 @@ class _Model:
             if self.problem.time is not None:
                 F = F.xreplace({t: self.problem.time})
             try:
-                g = sympy.integrate(F.xreplace({I.var: t - sigma}), sigma)
+                g = integrate_factored(F.xreplace({I.var: t - sigma}), sigma)
             except RecursionError:  # SymPy's meijerint on an unusual integrand: summed piece by piece instead
                 g = sympy.Integral(F, sigma)
             cache[I.node] = None if g.has(sympy.Integral) or g.has(sympy.Piecewise) else (dummies, sigma, g)
