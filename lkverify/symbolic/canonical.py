@@ -39,9 +39,14 @@ from sympy.polys.groebnertools import groebner
 from sympy.polys.orderings import lex
 from sympy.polys.rings import PolyRing
 
+from ..memo import Memo
 from ..options import Deadline
 from ..declare.functional import split_outer
 from ..errors import UnsupportedInput
+
+#: Gröbner bases (lex, variables in ``_sorted`` order) of relation blocks, by the block's sorted relations: a
+#: basis depends on nothing else, and the same unit-vector and frame constraints recur in every claim of a system
+_GROEBNER = Memo(256)
 
 __all__ = ["Canonicalizer", "NormalForms"]
 
@@ -313,9 +318,12 @@ class Canonicalizer:
         for syms, rels in blocks:
             key = tuple(sorted(rels, key=sympy.default_sort_key))
             if key not in self._gb_cache:
+                self._gb_cache[key] = _GROEBNER.get(key)
+            if self._gb_cache[key] is None:   # the same constraints recur in every claim of a system: once per process
                 self.deadline.check()
                 sub = PolyRing(_sorted(syms), sympy.QQ, lex)
-                self._gb_cache[key] = [g.as_expr() for g in groebner([sub.from_expr(p) for p in rels], sub)]
+                self._gb_cache[key] = _GROEBNER[key] = [g.as_expr()
+                                                        for g in groebner([sub.from_expr(p) for p in rels], sub)]
             basis += [ring.from_expr(g) for g in self._gb_cache[key]]
         return basis
 
