@@ -88,7 +88,6 @@ class Canonicalizer:
         self._atom: dict = {}  # canonical expression -> Dummy
         self.atom_expr: dict = {}  # Dummy -> canonical expression
         self._inverse_relation: dict = {}  # Dummy z -> atomized polynomial z*b - 1
-        self._gb_cache: dict = {}
         self._memo: dict = {}
         self._constraint_memo: dict = {}
         self._power_floor: dict = {}  # (normal base, exponent class) -> integer offset of the class's atom
@@ -317,14 +316,12 @@ class Canonicalizer:
         basis = []
         for syms, rels in blocks:
             key = tuple(sorted(rels, key=sympy.default_sort_key))
-            if key not in self._gb_cache:
-                self._gb_cache[key] = _GROEBNER.get(key)
-            if self._gb_cache[key] is None:   # the same constraints recur in every claim of a system: once per process
+            block = _GROEBNER.get(key)
+            if block is None:   # the same constraints recur in every claim of a system: once per process
                 self.deadline.check()
                 sub = PolyRing(_sorted(syms), sympy.QQ, lex)
-                self._gb_cache[key] = _GROEBNER[key] = [g.as_expr()
-                                                        for g in groebner([sub.from_expr(p) for p in rels], sub)]
-            basis += [ring.from_expr(g) for g in self._gb_cache[key]]
+                block = _GROEBNER[key] = [g.as_expr() for g in groebner([sub.from_expr(p) for p in rels], sub)]
+            basis += [ring.from_expr(g) for g in block]
         return basis
 
     def normal_expr(self, expr, *, extra_times: Sequence = ()) -> sympy.Expr:
