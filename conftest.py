@@ -8,3 +8,8 @@ entry of an earlier run (tests/test_cache.py switches it on in a directory of it
 import os
 
 os.environ["LKVERIFY_CACHE"] = "off"
+
+# the same SymPy cache size as ``import lkverify`` sets (test modules import SymPy first)
+from lkverify import SYMPY_CACHE_SIZE  # noqa: E402
+
+os.environ.setdefault("SYMPY_CACHE_SIZE", str(SYMPY_CACHE_SIZE))

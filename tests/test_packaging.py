@@ -58,3 +58,24 @@ def test_every_public_name_has_a_doctest_example():
             if (inspect.isclass(obj) or inspect.isfunction(obj)) and ">>>" not in (inspect.getdoc(obj) or ""):
                 missing.append(f"{module}.{name}")
     assert missing == []
+
+
+def _cache_size_after_import(env_value):
+    import os
+    import subprocess
+    import sys
+
+    env = {k: v for k, v in os.environ.items() if k != "SYMPY_CACHE_SIZE"}
+    if env_value is not None:
+        env["SYMPY_CACHE_SIZE"] = env_value
+    code = "import lkverify, sympy.core.cache as c; print(c.SYMPY_CACHE_SIZE)"
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True)
+    return out.stdout.strip()
+
+
+def test_importing_lkverify_first_enlarges_sympys_cache_unless_the_user_chose_a_size():
+    import lkverify
+
+    assert _cache_size_after_import(None) == str(lkverify.SYMPY_CACHE_SIZE) != "1000"
+    assert _cache_size_after_import("500") == "500"          # the user's setting wins
+    assert _cache_size_after_import("None") == "None"
