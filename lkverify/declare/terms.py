@@ -46,10 +46,12 @@ class Term:
         else:
             expr = sympy.sympify(expr)
         object.__setattr__(self, "expr", expr)
-        if not self.text:
-            object.__setattr__(self, "text", _short(sympy.sstr(expr)))
-        if not self.latex:
-            object.__setattr__(self, "latex", sympy.latex(expr) if len(sympy.sstr(expr)) < 400 else self.text)
+        if not self.text or not self.latex:
+            plain = sympy.sstr(expr)
+            if not self.text:
+                object.__setattr__(self, "text", _short(plain))
+            if not self.latex:
+                object.__setattr__(self, "latex", sympy.latex(expr) if len(plain) < 400 else self.text)
 
     @property
     def is_vector(self) -> bool:

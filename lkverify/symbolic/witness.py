@@ -32,6 +32,7 @@ from ..declare.parameters import ParameterKind, Parameters, apply_substitution
 from ..declare.states import Frame, Vector
 from ..declare.symbols import t
 from ..errors import UnsupportedInput
+from .floateval import NotEvaluable, float_values
 
 __all__ = ["Witness", "make_witness", "evaluate", "witness_constant"]
 
@@ -243,7 +244,7 @@ def evaluate_many(exprs, w: Witness) -> list[float]:
     """The values of several expressions at the witness, sharing compiled integrals."""
     exprs = [_expand_state_derivatives(_substitute_parameters(e, w), w) for e in exprs]
     histories = {f: sympy.lambdify([lam.variables[0]], lam.expr, modules="math") for f, lam in w.histories.items()}
-    fn = _compile(exprs, (t,), histories)
+    fn = _compile(exprs, (t,), histories, once=True)
     return [float(v) for v in fn(float(w.t_eval))]
 
 
@@ -260,12 +261,15 @@ def _expand_state_derivatives(expr, w: Witness):
     return expr.xreplace(done)
 
 
-def _compile(exprs, bound: tuple, histories: dict):
+def _compile(exprs, bound: tuple, histories: dict, *, once: bool = False):
     """A callable of the bound variables' values returning the values of ``exprs``.
 
     Integrals (outermost, shared between the expressions) become placeholders
     computed by adaptive quadrature of their compiled integrands; state values
-    ``x_i(arg)`` become placeholders computed from the histories.
+    ``x_i(arg)`` become placeholders computed from the histories.  ``once``: the callable
+    is called once (the top level of :func:`evaluate_many`), so the expressions themselves are
+    evaluated by walking their trees (:func:`~lkverify.symbolic.floateval.float_values`) rather
+    than printed and compiled; the integrands, called by the quadrature, are compiled either way.
     """
     ints = list(dict.fromkeys(i for e in exprs for i in outer_integrals(e)))
     holders = [sympy.Dummy(f"q{k}") for k in range(len(ints))]
@@ -280,14 +284,15 @@ def _compile(exprs, bound: tuple, histories: dict):
     leftovers = set().union(*[b.free_symbols for b in bodies]) - set(bound) - set(holders) - set(app_holders)
     if leftovers:
         raise UnsupportedInput(f"cannot evaluate numerically: unassigned symbols {sorted(map(str, leftovers))}")
-    f = sympy.lambdify(list(bound) + holders + app_holders, bodies, modules="math", cse=True, docstring_limit=0)
-    arg_fns = [(histories[a.func], sympy.lambdify(list(bound), a.args[0], modules="math")) for a in apps]
+    args = list(bound) + holders + app_holders
+    compile_ = _walker if once else _lambdified
+    f = compile_(args, bodies)
+    arg_fns = [(histories[a.func], compile_(list(bound), a.args[0], scalar=True)) for a in apps]
     quads = []
     for I in ints:
         var, lo, hi, inner = split_outer(I)
         g = _compile([inner], bound + (var,), histories)
-        quads.append((g, sympy.lambdify(list(bound), lo, modules="math"),
-                      sympy.lambdify(list(bound), hi, modules="math")))
+        quads.append((g, compile_(list(bound), lo, scalar=True), compile_(list(bound), hi, scalar=True)))
 
     def call(*vals):
         qs = []
@@ -300,3 +305,27 @@ def _compile(exprs, bound: tuple, histories: dict):
         return [complex(v).real if isinstance(v, complex) else float(v) for v in out]
 
     return call
+
+
+def _lambdified(args: list, exprs, *, scalar: bool = False):
+    """``sympy.lambdify`` of ``exprs`` (a list, or one expression with ``scalar``), common subexpressions shared."""
+    if scalar:
+        return sympy.lambdify(args, exprs, modules="math")
+    return sympy.lambdify(args, exprs, modules="math", cse=True, docstring_limit=0)
+
+
+def _walker(args: list, exprs, *, scalar: bool = False):
+    """The same callable as :func:`_lambdified` for one call: the trees walked at call time, no code printed.
+
+    A node :func:`float_values` does not know is compiled by lambdify after all."""
+    items = [exprs] if scalar else list(exprs)
+
+    def call(*vals):
+        try:
+            out = float_values(items, dict(zip(args, map(float, vals))))
+        except NotEvaluable:
+            out = list(_lambdified(args, items)(*vals))
+        return out[0] if scalar else out
+
+    return call
+
