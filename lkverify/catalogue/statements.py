@@ -16,6 +16,7 @@ import dataclasses
 from ..certify.hypotheses import Hypothesis, MatrixHypothesis
 from ..certify.steps import BoundClaim
 from ..certify.steps.chain import TermwiseBound
+from ..memo import Memo
 from ..report.results import Result
 from ..status import Status
 
@@ -64,8 +65,22 @@ def _checked_rows(fns, values, cap, what: str = "check", say=None) -> list:
     return out
 
 
+#: id(statement) → (statement, its symbols): a statement's expressions do not change, and every run asks for its
+#: symbols once per result and once for the parameters shown (the statement is kept, so its id is not reused)
+_SYMBOLS = Memo(512)
+
+
 def _symbols_of(statement) -> set:
     """The symbols and applied functions a hypothesis or claim is written in."""
+    hit = _SYMBOLS.get(id(statement))
+    if hit is not None and hit[0] is statement:
+        return set(hit[1])
+    out = _symbols_uncached(statement)
+    _SYMBOLS[id(statement)] = (statement, frozenset(out))
+    return out
+
+
+def _symbols_uncached(statement) -> set:
     import sympy
     from sympy.core.function import AppliedUndef
 

@@ -500,7 +500,7 @@ def apply_substitution(expr, sub: Mapping):
     """Replace parameter atoms in ``expr`` (symbols by values, functions by Lambdas)."""
     funcs = {k: v for k, v in sub.items() if isinstance(k, sympy.FunctionClass)}
     syms = {k: v for k, v in sub.items() if not isinstance(k, sympy.FunctionClass)}
-    if funcs and isinstance(expr, sympy.Basic):
+    if funcs and isinstance(expr, (sympy.Basic, sympy.MatrixBase)):
         # the two rewrites below walk and rebuild the whole tree; one traversal tells whether either has work
         found = expr.atoms(sympy.Function, sympy.Derivative, sympy.Subs)
         if not any(isinstance(e, (sympy.Derivative, sympy.Subs)) or e.func in funcs for e in found):

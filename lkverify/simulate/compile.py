@@ -53,6 +53,7 @@ from ..declare.functional import outer_integrals as _outer_integrals
 from ..declare.parameters import ParameterKind, apply_substitution
 from ..declare.symbols import t, zeta
 from ..declare.system import System
+from ..memo import Memo
 
 __all__ = ["CompiledSystem", "SymbolicSystem", "compile_system", "symbolic_system"]
 
@@ -368,8 +369,37 @@ def _resolved_rhs(system: System, values, name: str) -> list:
     return _substituted_rhs(system, P.substitution(P.resolve(values or {}, use_defaults=True)), name)
 
 
+#: (system, replacement, kept symbols) → the substituted right-hand side: a run's compile_system and its
+#: compile_family substitute the same values, and the runs of an example mostly share them (the system is kept
+#: with its entry, so its id is not reused)
+_SUBSTITUTED = Memo(64)
+
+
+def _memo_key(system: System, sub: dict, keep) -> tuple | None:
+    """The key of :data:`_SUBSTITUTED`, or None (an unhashable value, or a Float: 2.0 == 2 in SymPy)."""
+    if any(isinstance(v, sympy.Basic) and v.has(sympy.Float) for v in sub.values()):
+        return None
+    try:
+        key = (id(system), frozenset(sub.items()), frozenset(keep))
+        hash(key)
+    except TypeError:
+        return None
+    return key
+
+
 def _substituted_rhs(system: System, sub: dict, name: str, keep=frozenset()) -> list:
     """The right-hand side with the atom replacement ``sub``; refuses free symbols other than t and ``keep``."""
+    key = _memo_key(system, sub, keep)
+    hit = _SUBSTITUTED.get(key) if key is not None else None
+    if hit is not None and hit[0] is system:
+        return list(hit[1])
+    rhs = _substitute_rhs(system, sub, name, keep)
+    if key is not None:
+        _SUBSTITUTED[key] = (system, tuple(rhs))
+    return rhs
+
+
+def _substitute_rhs(system: System, sub: dict, name: str, keep) -> list:
     rhs = []
     for s in system.states:
         rhs += list(apply_substitution(system.rhs(s), sub))

@@ -36,3 +36,9 @@ def test_the_fast_path_agrees_with_the_full_rewrite():
         slow = slow.replace(lambda q: isinstance(q, (sympy.Derivative, sympy.Subs)) and not q.atoms(undef),
                             lambda q: q.doit()).xreplace({a: 3})
         assert apply_substitution(e, SUB) == slow
+
+
+def test_a_column_is_substituted_entry_by_entry_on_both_paths():
+    col = sympy.Matrix([a * x(t), h(t) * x(t - 1)])
+    assert apply_substitution(col, SUB) == sympy.Matrix([3 * x(t), (1 + sympy.sin(t)) * x(t - 1)])
+    assert apply_substitution(sympy.Matrix([a * x(t)]), SUB) == sympy.Matrix([3 * x(t)])
