@@ -51,6 +51,7 @@ from ..certify.boxes import box_symbol, margin_over_box, uniform_bound
 from ..declare.boxes import ParameterBox
 from ..declare.parameters import ParameterKind, ResolvedValues, apply_substitution
 from ..errors import InputError, UnsupportedInput
+from ..memo import Memo
 from ..report.results import Report, Result
 from ..report.schema import SCHEMA_ID
 from ..report.text import MAX_LINES, REPORT_WIDTH, wrap_block
@@ -69,6 +70,19 @@ DEFAULT_MAX_BOXES = 16
 REGION_FACTORS = (1, sympy.Rational(1, 2), sympy.Rational(1, 4), sympy.Rational(1, 8))
 
 _SCALARS = (ParameterKind.REAL, ParameterKind.POSITIVE, ParameterKind.NONNEGATIVE, ParameterKind.DELAY)
+
+#: the search of the proof's choices at a corner of a piece stops after this many generations without
+#: improvement (:func:`lkverify.certify.decay.search_parameters`, ``stall``): what it finds is a candidate,
+#: checked by the chain over the whole piece like any other, so the early stop changes which choices are
+#: tried, never what is claimed for them (a point check, ``lkverify check`` without ``--box``, and
+#: ``lkverify constants`` search to the end)
+BOX_SEARCH_STALL = 25
+
+#: the searches' outcomes per process: (theorem, id of the job, stall, the values at the corner) → (job,
+#: choices or None).  The search is deterministic (seeded), so a neighbouring cell sharing the corner gets
+#: the same choices without searching again; stored only for a search that returned (one the caller's cap
+#: cut stores none)
+_SEARCHED = Memo(256)
 
 
 class BoxStatus(Label):
@@ -610,12 +624,20 @@ class _State:
         for corner in ([worst] if worst else []) + ([tightest] if tightest != worst else []):
             key = tuple(sorted((k, str(v)) for k, v in corner.items()))
             if key not in self.searched:
-                say(f"{self.theorem.qualified_name}: searching {', '.join(free)} at the point "
-                    + ", ".join(f"{k} = {v}" for k, v in corner.items()))
-                found, _ = search(self.theorem.qualified_name,
-                                  self.theorem.parameters.resolve({**{k: v for k, v in documented.items()
-                                                                      if k not in free}, **self.point_values(corner)},
-                                                                  use_defaults=True), progress=say)
+                at = self.theorem.parameters.resolve({**{k: v for k, v in documented.items() if k not in free},
+                                                      **self.point_values(corner)}, use_defaults=True)
+                memo_key = (self.theorem.qualified_name, id(job), BOX_SEARCH_STALL,
+                            tuple(sorted((k, str(v)) for k, v in at.items())))
+                hit = _SEARCHED.get(memo_key)
+                if hit is None or hit[0] is not job:  # (the job kept with its outcome: its id is not reused)
+                    say(f"{self.theorem.qualified_name}: searching {', '.join(free)} at the point "
+                        + ", ".join(f"{k} = {v}" for k, v in corner.items()))
+                    found, _ = search(self.theorem.qualified_name, at, progress=say, stall=BOX_SEARCH_STALL)
+                    _SEARCHED[memo_key] = (job, found)
+                else:
+                    found = hit[1]
+                    say(f"{self.theorem.qualified_name}: the choices searched at the point "
+                        + ", ".join(f"{k} = {v}" for k, v in corner.items()) + " earlier in this process")
                 self.searched[key] = None if found is None else {**documented,
                                                                  **{k: str(v) for k, v in found.items()}}
             where = ", ".join(f"{k} = {v}" for k, v in corner.items())

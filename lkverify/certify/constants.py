@@ -342,13 +342,16 @@ class ConstantsJob:
         return Report(item_name, dict(shown), tuple(results), _verdict(results, self.stated(values), cert)), extra
 
     def search_choices(self, item_name: str, values: Mapping, *, progress: Callable[[str], None] | None = None,
-                       seed: int = 0, goal: str | None = None) -> tuple[dict | None, str]:
+                       seed: int = 0, goal: str | None = None, stall: int | None = None) -> tuple[dict | None, str]:
         """The free parameters (the proof's choices) at which the decay is certified, found as :meth:`run` does.
 
         What ``lkverify check`` runs when a proof's documented choices do not close its chain
         (:meth:`lkverify.catalogue.Theorem.run`): the template constants, the bound steps (``steps=True``),
         the search and the certification of :meth:`run`, without the simulations; on the job's work
-        limits (no time budget of its own: the caller's cap interrupts it).
+        limits (no time budget of its own: the caller's cap interrupts it).  ``stall``: the searches stop
+        early after that many generations without improvement (:func:`~lkverify.certify.decay.search_parameters`;
+        default none, as :meth:`run`); the parameters they return are certified all the same, so only which
+        parameters are found can change, never what is claimed for them.
 
         Returns
         -------
@@ -371,7 +374,7 @@ class ConstantsJob:
         if build is None:
             return None, "a bound step of the chain is not proved with the free parameters open"
         found = self._search_and_certify(item_name, build, objective, deadline=deadline, state=state, say=say,
-                                         seed=seed)
+                                         seed=seed, stall=stall)
         ranges = ", ".join(f"{k} ∈ [{lo:g}, {hi:g}]" for k, (lo, hi) in (self.wider or self.free).items())
         if found.params is None:
             return None, (f"the search ({ranges}) found no parameters for which the final inequalities hold on the "
@@ -415,7 +418,7 @@ class ConstantsJob:
         return consts
 
     def _search_and_certify(self, item_name, build, objective, *, deadline: Deadline, state: _Progress, say,
-                            seed) -> _Candidate:
+                            seed, stall: int | None = None) -> _Candidate:
         """Steps 2–3: search the free parameters, certify; a refuted point joins the next round's samples."""
         tune = self.tuning
         extra_points: list = []
@@ -439,10 +442,10 @@ class ConstantsJob:
             left = deadline.remaining
             search_deadline = Deadline(max(tune.search_share * left, 1e-3)) if left is not None else None
             params, est = search_parameters(build, ranges, objective=objective, seed=seed + round_,
-                                            extra_points=extra_points, deadline=search_deadline)
+                                            extra_points=extra_points, deadline=search_deadline, stall=stall)
             if est is None and widen():
                 params, est = search_parameters(build, ranges, objective=objective, seed=seed + round_,
-                                                extra_points=extra_points, deadline=search_deadline)
+                                                extra_points=extra_points, deadline=search_deadline, stall=stall)
             if est is None:
                 return _Candidate(None, found.certificate, False)
             params = {k: sympy.Rational(v).limit_denominator(tune.parameter_denominator) for k, v in params.items()}

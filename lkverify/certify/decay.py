@@ -61,7 +61,7 @@ from .intervals import enclose, float_down, float_up
 from .matrices import matrix_positive_definite
 
 __all__ = ["C0_REL_GAP", "CERTIFY_SECONDS", "DecayCertificate", "DecayModel", "Envelope", "ESTIMATE_GRID", "StatedAt",
-           "INFEASIBLE_SCORE", "SEARCH_GRID", "SEARCH_MAXITER", "SEARCH_POPSIZE", "certify_decay", "certify_model", "estimate_decay", "search_parameters", "tighten"]
+           "INFEASIBLE_SCORE", "SEARCH_GRID", "SEARCH_MAXITER", "SEARCH_POPSIZE", "SEARCH_STALL_RTOL", "certify_decay", "certify_model", "estimate_decay", "search_parameters", "tighten"]
 
 #: default time budget of one :func:`certify_decay` (seconds, shared by its interval checks)
 CERTIFY_SECONDS = 60.0
@@ -71,6 +71,8 @@ C0_REL_GAP = 1e-3
 ESTIMATE_GRID = 41
 #: the parameter search: differential evolution's generations and population factor, and its face grid
 SEARCH_MAXITER, SEARCH_POPSIZE, SEARCH_GRID = 250, 20, 31
+#: the relative improvement of the best score that resets the search's early stop (``stall``)
+SEARCH_STALL_RTOL = 1e-3
 #: points sampled uniformly before the parameter search, to seed its population with feasible ones
 PRESAMPLE = 1000
 #: the objective's value at parameters for which the estimator finds no admissible constants
@@ -610,7 +612,8 @@ def estimate_decay(model: DecayModel, *, grid: int = ESTIMATE_GRID, refine: bool
 def search_parameters(build: Callable[[Mapping], DecayModel], bounds_: Mapping[str, tuple], *,
                       objective: Callable[[dict], float], seed: int = 0, maxiter: int = SEARCH_MAXITER,
                       popsize: int = SEARCH_POPSIZE, grid: int = SEARCH_GRID, extra_points: Sequence[dict] = (),
-                      deadline: Deadline | None = None) -> tuple[dict, dict | None]:
+                      deadline: Deadline | None = None, stall: int | None = None,
+                      stall_rtol: float = SEARCH_STALL_RTOL) -> tuple[dict, dict | None]:
     """Estimated best free parameters: differential evolution over ``bounds_`` of ``objective(estimate)``.
 
     ``build(params)`` returns the model for a parameter dict (it is called once with
@@ -633,6 +636,14 @@ def search_parameters(build: Callable[[Mapping], DecayModel], bounds_: Mapping[s
     deadline : lkverify.options.Deadline, optional
         The search stops at the end of the generation in which it expires, keeping the best
         point found so far (never interrupted half-way).
+    stall : int, optional
+        An early stop: the search also stops at the end of the first generation after which
+        the best score has not improved by more than ``stall_rtol`` (relative) for ``stall``
+        generations; default none (the full ``maxiter`` generations or scipy's convergence).
+        It only picks the point sooner: what is returned is the best point evaluated and the
+        estimate recomputed there (None when it is infeasible), never a score of another point.
+    stall_rtol : float
+        The relative improvement that counts for ``stall``.
 
     Returns
     -------
@@ -651,9 +662,15 @@ def search_parameters(build: Callable[[Mapping], DecayModel], bounds_: Mapping[s
     ...                                 maxiter=10, popsize=5, grid=9)
     >>> round(float(params["a"]), 2), round(est["c_tilde"], 3)
     (2.0, 1.414)
+    >>> params, est = search_parameters(build, {"a": (0.5, 2)}, objective=lambda est: -est["c_tilde"],
+    ...                                 maxiter=200, popsize=5, grid=9, stall=5)   # stops after 5 flat generations
+    >>> round(float(params["a"]), 2), round(est["c_tilde"], 3)
+    (2.0, 1.414)
     """
     from scipy.optimize import differential_evolution
 
+    if stall is not None and (isinstance(stall, bool) or not isinstance(stall, int) or stall < 1):
+        raise InputError(f"stall: expected a positive number of generations or None, got {stall!r}")
     names = list(bounds_)
     est = _FastEstimator(build, names, grid)
     est.extra = list(extra_points)
@@ -665,12 +682,28 @@ def search_parameters(build: Callable[[Mapping], DecayModel], bounds_: Mapping[s
     def point(z):
         return [10.0 ** zi if lg else zi for zi, lg in zip(z, logs)]
 
+    # the best score evaluated so far (with greedy selection it is the population's best), and the
+    # generations since it last improved by more than stall_rtol (the early stop)
+    best = {"score": math.inf, "ref": math.inf, "flat": 0}
+
     def f(z):
         r = est(point(z))
-        return INFEASIBLE_SCORE if r is None else objective(r)
+        score = INFEASIBLE_SCORE if r is None else objective(r)
+        if score < best["score"]:
+            best["score"] = score
+        return score
 
     def expired(xk, convergence=None) -> bool:  # returning True stops differential_evolution cleanly
-        return deadline is not None and deadline.expired
+        if deadline is not None and deadline.expired:
+            return True
+        if stall is None:
+            return False
+        score, ref = best["score"], best["ref"]
+        if score < ref and (not math.isfinite(ref) or ref - score > stall_rtol * abs(ref)):
+            best["ref"], best["flat"] = score, 0
+        else:
+            best["flat"] += 1
+        return best["flat"] >= stall
 
     ranges = [tuple(np.log10(bounds_[n])) if lg else bounds_[n] for n, lg in zip(names, logs)]
     # a population that sees only infeasible points converges at once: seed it with feasible points

@@ -284,3 +284,84 @@ def test_a_decay_refuted_by_a_positive_lowest_order_part_is_not_retried_on_small
     # the toy's own step W = −k n²: lowest-order part negative, established on the first region
     calls.clear()
     assert run_over_box(TOY, {}, {"k": (1, 2)}, max_boxes=1).status is BoxStatus.ESTABLISHED and calls == [None]
+
+
+# -- the search of the choices over a box: stopped early, remembered per process, checked over the piece ----------
+Pg = Parameters()
+kg = Pg.scalar("k", default=1)
+g = Pg.scalar("g", default=1)                    # a choice of the proof (the stub chain below reads it)
+xg = Vector("x", 2)
+ng = norm_measure("n", xg(t))
+SYSg = System([Equation(xg, [Term(-kg * xg(t))])], parameters=Pg)
+Vg = Functional([Term(xg(t).dot(xg(t)) / 2, text="½‖x‖²")])
+VDOTg = DerivativeClaim("Vdot", Vg, SYSg, [Term(-kg * xg(t).dot(xg(t)), text="−k‖x‖²")])
+
+
+def _chosen_theorem(job):
+    half = [TermBound("½‖x‖²", ng.symbol**2 / 2, Rayleigh(xg(t), EYE / 2, eigenvalue=R(1, 2), norm_squared=ng.symbol**2))]
+    rule = Rayleigh(xg(t), -EYE, factor=kg, eigenvalue=-1, norm_squared=ng.symbol**2)
+    steps = lyapunov_steps(Vg, SYSg, half, half, [TermBound("−k‖x‖²", -kg * ng.symbol**2, rule)], [ng],
+                           derivation=VDOTg, region=Region({ng: 1}))
+    return Theorem("toy_choices", system=SYSg, functional=Vg, claims=[VDOTg], steps=steps,
+                   hypotheses=[Hypothesis("k > 0", kg)], decay=Decay(1, ("n",), {}, {"d1": "n"}),
+                   choices={"g": "1"}, constants=job)
+
+
+def _decay_closes_only_at(monkeypatch, good: str):
+    """The chain's decay link refuted unless the choice g is ``good`` (the rest of the chain as it is)."""
+    from lkverify.catalogue import boxrun
+    from lkverify.catalogue.links import Link
+
+    real = boxrun._State._chain_at
+
+    def chain_at(self, box, sym_values, *args):
+        rows, checked, cut, failing, decay = real(self, box, sym_values, *args)
+        if str(sym_values["g"]) != good:
+            decay = Link(decay.name, Status.FAILED, "stub: refuted unless g = " + good)
+        return rows, checked, cut, failing, decay
+
+    monkeypatch.setattr(boxrun._State, "_chain_at", chain_at)
+
+
+def _search_job(found, calls):
+    from types import SimpleNamespace
+
+    def search_choices(name, values, *, progress=None, stall=None):
+        calls.append((str(values["k"]), stall))
+        return (dict(found), "stub search") if found else (None, "stub: the search found none")
+
+    return SimpleNamespace(steps=True, free={"g": (0, 10)}, search_choices=search_choices)
+
+
+def test_the_box_search_stops_early_and_what_it_finds_is_checked_over_the_piece(monkeypatch):
+    from lkverify.catalogue.boxrun import BOX_SEARCH_STALL
+
+    _decay_closes_only_at(monkeypatch, "7")
+    calls = []
+    rep = run_over_box(_chosen_theorem(_search_job({"g": "7"}, calls)), {}, {"k": ("1/2", "2")}, max_boxes=1)
+    assert rep.status is BoxStatus.ESTABLISHED and rep.pieces[0].choices["g"] == "7"
+    assert calls and all(stall == BOX_SEARCH_STALL for _, stall in calls)
+
+
+@pytest.mark.parametrize("found", [None, {"g": "3"}])
+def test_choices_an_early_stopped_search_returns_that_do_not_close_leave_the_box_undecided(monkeypatch, found):
+    # the search stopped early with choices that do not close (or none): nothing is claimed for them
+    _decay_closes_only_at(monkeypatch, "7")
+    calls = []
+    rep = run_over_box(_chosen_theorem(_search_job(found, calls)), {}, {"k": ("1/2", "2")}, max_boxes=1)
+    assert calls and rep.status is BoxStatus.UNDECIDED and not rep.proved and rep.exit_code == 1
+    assert not rep.failing                       # refuted at some choices is not a failing point of the theorem
+
+
+def test_a_search_at_a_corner_is_reused_by_a_neighbouring_box_of_the_same_job_only(monkeypatch):
+    _decay_closes_only_at(monkeypatch, "7")
+    calls = []
+    th = _chosen_theorem(_search_job({"g": "7"}, calls))
+    first = run_over_box(th, {}, {"k": ("1/2", "1")}, max_boxes=1)
+    searched = list(calls)
+    second = run_over_box(th, {}, {"k": ("1/2", "1")}, max_boxes=1)   # the same corners: no new search
+    assert first.status is second.status is BoxStatus.ESTABLISHED and calls == searched
+    assert first.pieces[0].choices == second.pieces[0].choices
+    other = []                                   # another job at the same corners searches for itself
+    third = run_over_box(_chosen_theorem(_search_job({"g": "5"}, other)), {}, {"k": ("1/2", "1")}, max_boxes=1)
+    assert other and third.status is BoxStatus.UNDECIDED

@@ -113,3 +113,40 @@ def test_search_finds_a_feasible_set_that_is_a_small_part_of_a_wide_range():
     params, est = search_parameters(build, {"a": (1e-4, 10.0)}, objective=lambda est: -est["c_tilde"],
                                     maxiter=20, popsize=5, grid=9)
     assert est is not None and params["a"] < 0.01
+
+
+def test_the_early_stop_ends_a_flat_search_sooner_with_the_same_best_point():
+    calls = {"full": 0, "stall": 0}
+
+    def counted(which):
+        def objective(r):
+            calls[which] += 1
+            return -r["c_tilde"]
+        return objective
+
+    full, est_full = search_parameters(family, {"a": (0.5, 2.0)}, objective=counted("full"), maxiter=60, popsize=5,
+                                       grid=9)
+    early, est = search_parameters(family, {"a": (0.5, 2.0)}, objective=counted("stall"), maxiter=60, popsize=5,
+                                   grid=9, stall=5)
+    assert calls["stall"] < calls["full"]                       # stopped before scipy's own convergence
+    assert early["a"] == pytest.approx(full["a"], rel=1e-3) and est["c_tilde"] == pytest.approx(est_full["c_tilde"],
+                                                                                             rel=1e-3)
+    # what it returns is the estimate at the point it returns (recomputed there), not a stale score
+    again = estimate_decay(family({"a": sympy.Rational(early["a"])}), grid=9, refine=False)
+    assert est["c_tilde"] == pytest.approx(again["c_tilde"], rel=1e-9)
+
+
+def test_an_early_stopped_search_that_found_nothing_feasible_claims_nothing():
+    def nowhere(params):                                        # V̇ ≤ +a(w³ + e³): no admissible constants anywhere
+        return dataclasses.replace(family(params), vdot=params["a"] * (w**3 + e**3))
+
+    params, est = search_parameters(nowhere, {"a": (0.5, 2.0)}, objective=lambda r: -r["c_tilde"], maxiter=200,
+                                    popsize=5, grid=9, stall=3)
+    assert est is None and 0.5 <= params["a"] <= 2.0
+
+
+@pytest.mark.parametrize("stall", [0, -1, 2.5, True])
+def test_the_early_stop_needs_a_positive_number_of_generations(stall):
+    with pytest.raises(InputError, match="stall"):
+        search_parameters(family, {"a": (0.5, 2.0)}, objective=lambda r: -r["c_tilde"], maxiter=5, popsize=5,
+                          grid=9, stall=stall)
