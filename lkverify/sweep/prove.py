@@ -262,25 +262,30 @@ def _prove_cells_kw(name, values, cells, kw):
 SEGMENT = 4
 
 
+#: the fewest tasks a proved sweep is cut into (when it has that many cells), whatever the number of workers
+MIN_TASKS = 8
+
+
 def _segments(jobs, grid, options) -> list:
     """The jobs as runs of neighbouring cells along the first axis: [(short, name, [k, …])].
 
-    Runs of at most :data:`SEGMENT` cells, shorter when there would be fewer than four tasks per
-    worker (the hints save searches, the balance between workers saves more on a small grid).
+    Runs of at most :data:`SEGMENT` cells, shorter when there would be fewer than :data:`MIN_TASKS`
+    tasks (the hints save searches, the balance between workers saves more on a small grid).  The
+    runs depend on the grid alone, never on the number of workers: a cell's hint (the choices of the
+    cell before it in its run) decides which choices are tried first, so a map is the same map on
+    any number of workers, and in process.
 
     >>> from types import SimpleNamespace
     >>> from lkverify.sweep.grid import Grid
-    >>> g = Grid.parse(["b=0:1:4", "h=0:1:3"])
+    >>> g = Grid.parse(["b=0:1:4", "h=0:1:6"])
     >>> jobs = [("t", "x.t", k) for k in range(g.size)]
     >>> [ks for _, _, ks in _segments(jobs, g, SimpleNamespace(workers=1, scheduler=None))][:2]
-    [[0, 3, 6], [9]]
-    >>> len(_segments(jobs, g, SimpleNamespace(workers=2, scheduler=None)))
-    12
+    [[0, 6, 12], [18]]
+    >>> one, four = SimpleNamespace(workers=1, scheduler=None), SimpleNamespace(workers=4, scheduler=None)
+    >>> _segments(jobs, g, one) == _segments(jobs, g, four)
+    True
     """
-    import os
-
-    workers = 1 if options.scheduler == "synchronous" else (options.workers or os.cpu_count() or 1)
-    size = max(1, min(SEGMENT, len(jobs) // (4 * workers)))
+    size = max(1, min(SEGMENT, len(jobs) // MIN_TASKS))
     rows: dict = {}
     for short, name, k in jobs:
         idx = grid.index(k)
