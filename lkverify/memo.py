@@ -61,6 +61,23 @@ class Memo:
             while len(self._data) > self.maxsize:
                 self._data.popitem(last=False)
 
+    def owned(self, owner, key=(), default=None):
+        """The value :meth:`keep` stored for ``owner`` (an object, by identity) and ``key``, or ``default``.
+
+        For results that belong to an object without a usable hash or equality (a claim, a system,
+        a job): the entry holds the object itself, so its ``id`` is not reused while the entry lives.
+
+        >>> m, owner = Memo(4), object()
+        >>> m.keep(owner, "k", 1); m.owned(owner, "k"), m.owned(object(), "k", "none")
+        (1, 'none')
+        """
+        hit = self.get((id(owner), key))
+        return hit[1] if hit is not None and hit[0] is owner else default
+
+    def keep(self, owner, key, value) -> None:
+        """Store ``value`` for ``owner`` and ``key`` (see :meth:`owned`)."""
+        self[(id(owner), key)] = (owner, value)
+
     def __contains__(self, key) -> bool:
         return key in self._data
 

@@ -78,11 +78,12 @@ _SCALARS = (ParameterKind.REAL, ParameterKind.POSITIVE, ParameterKind.NONNEGATIV
 #: ``lkverify constants`` search to the end)
 BOX_SEARCH_STALL = 25
 
-#: the searches' outcomes per process: (theorem, id of the job, stall, the values at the corner) → (job,
-#: choices or None).  The search is deterministic (seeded), so a neighbouring cell sharing the corner gets
+#: the searches' outcomes per process: job, (theorem, stall, the values at the corner) → choices or None
+#: (:meth:`Memo.owned`).  The search is deterministic (seeded), so a neighbouring cell sharing the corner gets
 #: the same choices without searching again; stored only for a search that returned (one the caller's cap
 #: cut stores none)
 _SEARCHED = Memo(256)
+_NOT_SEARCHED = object()
 
 
 class BoxStatus(Label):
@@ -626,16 +627,15 @@ class _State:
             if key not in self.searched:
                 at = self.theorem.parameters.resolve({**{k: v for k, v in documented.items() if k not in free},
                                                       **self.point_values(corner)}, use_defaults=True)
-                memo_key = (self.theorem.qualified_name, id(job), BOX_SEARCH_STALL,
+                memo_key = (self.theorem.qualified_name, BOX_SEARCH_STALL,
                             tuple(sorted((k, str(v)) for k, v in at.items())))
-                hit = _SEARCHED.get(memo_key)
-                if hit is None or hit[0] is not job:  # (the job kept with its outcome: its id is not reused)
+                found = _SEARCHED.owned(job, memo_key, _NOT_SEARCHED)
+                if found is _NOT_SEARCHED:
                     say(f"{self.theorem.qualified_name}: searching {', '.join(free)} at the point "
                         + ", ".join(f"{k} = {v}" for k, v in corner.items()))
                     found, _ = search(self.theorem.qualified_name, at, progress=say, stall=BOX_SEARCH_STALL)
-                    _SEARCHED[memo_key] = (job, found)
+                    _SEARCHED.keep(job, memo_key, found)
                 else:
-                    found = hit[1]
                     say(f"{self.theorem.qualified_name}: the choices searched at the point "
                         + ", ".join(f"{k} = {v}" for k, v in corner.items()) + " earlier in this process")
                 self.searched[key] = None if found is None else {**documented,

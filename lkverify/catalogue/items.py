@@ -599,13 +599,13 @@ def _cached_check(claim, values: Mapping, check):
     so a theorem run again at the same values — or, for a claim first proved with the user's
     functions symbolic, at another h or kernel — reuses it.
     """
-    key = (id(claim), tuple(sorted((k, str(v)) for k, v in values.items())))
-    hit = _CLAIM_CACHE.get(key)
-    if hit is not None and hit[0] is claim:
-        return hit[1]
+    key = tuple(sorted((k, str(v)) for k, v in values.items()))
+    hit = _CLAIM_CACHE.owned(claim, key)
+    if hit is not None:
+        return hit
     res = check()
     if res.status in (Status.EXACT, Status.FAILED):
-        _CLAIM_CACHE[key] = (claim, res)
+        _CLAIM_CACHE.keep(claim, key, res)
     return res
 
 

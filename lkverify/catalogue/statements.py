@@ -65,18 +65,18 @@ def _checked_rows(fns, values, cap, what: str = "check", say=None) -> list:
     return out
 
 
-#: id(statement) → (statement, its symbols): a statement's expressions do not change, and every run asks for its
-#: symbols once per result and once for the parameters shown (the statement is kept, so its id is not reused)
+#: statement → its symbols (:meth:`Memo.owned`): a statement's expressions do not change, and every run asks for
+#: its symbols once per result and once for the parameters shown
 _SYMBOLS = Memo(512)
 
 
 def _symbols_of(statement) -> set:
     """The symbols and applied functions a hypothesis or claim is written in."""
-    hit = _SYMBOLS.get(id(statement))
-    if hit is not None and hit[0] is statement:
-        return set(hit[1])
+    hit = _SYMBOLS.owned(statement)
+    if hit is not None:
+        return set(hit)
     out = _symbols_uncached(statement)
-    _SYMBOLS[id(statement)] = (statement, frozenset(out))
+    _SYMBOLS.keep(statement, (), frozenset(out))
     return out
 
 

@@ -369,18 +369,17 @@ def _resolved_rhs(system: System, values, name: str) -> list:
     return _substituted_rhs(system, P.substitution(P.resolve(values or {}, use_defaults=True)), name)
 
 
-#: (system, replacement, kept symbols) → the substituted right-hand side: a run's compile_system and its
-#: compile_family substitute the same values, and the runs of an example mostly share them (the system is kept
-#: with its entry, so its id is not reused)
+#: system, (replacement, kept symbols) → the substituted right-hand side (:meth:`Memo.owned`): a run's
+#: compile_system and its compile_family substitute the same values, and the runs of an example mostly share them
 _SUBSTITUTED = Memo(64)
 
 
 def _memo_key(system: System, sub: dict, keep) -> tuple | None:
-    """The key of :data:`_SUBSTITUTED`, or None (an unhashable value, or a Float: 2.0 == 2 in SymPy)."""
+    """The key of :data:`_SUBSTITUTED` for ``system``, or None (an unhashable value, or a Float: 2.0 == 2 in SymPy)."""
     if any(isinstance(v, sympy.Basic) and v.has(sympy.Float) for v in sub.values()):
         return None
     try:
-        key = (id(system), frozenset(sub.items()), frozenset(keep))
+        key = (frozenset(sub.items()), frozenset(keep))
         hash(key)
     except TypeError:
         return None
@@ -390,12 +389,12 @@ def _memo_key(system: System, sub: dict, keep) -> tuple | None:
 def _substituted_rhs(system: System, sub: dict, name: str, keep=frozenset()) -> list:
     """The right-hand side with the atom replacement ``sub``; refuses free symbols other than t and ``keep``."""
     key = _memo_key(system, sub, keep)
-    hit = _SUBSTITUTED.get(key) if key is not None else None
-    if hit is not None and hit[0] is system:
-        return list(hit[1])
+    hit = _SUBSTITUTED.owned(system, key) if key is not None else None
+    if hit is not None:
+        return list(hit)
     rhs = _substitute_rhs(system, sub, name, keep)
     if key is not None:
-        _SUBSTITUTED[key] = (system, tuple(rhs))
+        _SUBSTITUTED.keep(system, key, tuple(rhs))
     return rhs
 
 

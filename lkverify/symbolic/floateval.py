@@ -41,7 +41,7 @@ _FUNCTIONS = {
     sympy.asin: math.asin, sympy.acos: math.acos, sympy.atan: math.atan, sympy.atan2: math.atan2,
     sympy.sinh: math.sinh, sympy.cosh: math.cosh, sympy.tanh: math.tanh, sympy.Abs: abs,
     sympy.floor: math.floor, sympy.ceiling: math.ceil, sympy.sign: _sign,
-    sympy.Max: max, sympy.Min: min,
+    sympy.Max: max, sympy.Min: min, sympy.log: math.log,   # SymPy writes log(x, b) as log(x)/log(b)
 }
 
 
@@ -58,7 +58,7 @@ def float_values(exprs: Sequence, env: Mapping) -> list:
     ------
     NotEvaluable
         A node that is not a number, a symbol of ``env``, a sum, product or power, or a function of
-        :data:`_FUNCTIONS` (``log`` with one argument too).
+        :data:`_FUNCTIONS`.
     ValueError
         A real power of a negative number, a logarithm of a nonpositive one (as ``math`` raises).
     """
@@ -84,9 +84,7 @@ def float_values(exprs: Sequence, env: Mapping) -> list:
                 out = math.sqrt(value(b))
             else:
                 out = _power(value(b), int(x) if x.is_Integer else value(x))
-        elif isinstance(e, sympy.log) and len(e.args) == 1:
-            out = math.log(value(e.args[0]))
-        elif type(e) in _FUNCTIONS or getattr(e, "func", None) in _FUNCTIONS:
+        elif e.func in _FUNCTIONS:
             out = _FUNCTIONS[e.func](*[value(a) for a in e.args])
         else:
             raise NotEvaluable(type(e).__name__)
